@@ -1,0 +1,51 @@
+# MeshIK: the README's two commands (`make demo`, `make test`) and helpers.
+# Every target installs what it needs first (scripts/setup.sh) and is quick when current.
+SHELL := /bin/bash
+ROOT := $(abspath .)
+PY := $(ROOT)/.venv/bin/python
+BUILD := build
+BUILD_ASAN := build-asan
+JOBS ?= $(shell nproc)
+CMAKE_ARGS ?=
+
+.PHONY: all setup build test test-cpp test-asan test-python demo bench plugin clean
+
+all: build
+
+setup:
+	@scripts/setup.sh all
+
+# Configure once (re-configured by CMake itself when its inputs change), then build incrementally.
+$(BUILD)/build.ninja: | setup
+	cmake -S . -B $(BUILD) -G Ninja -DPython_EXECUTABLE=$(PY) $(CMAKE_ARGS)
+
+build: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+
+$(BUILD_ASAN)/build.ninja: | setup
+	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMESHIK_SANITIZE=address,undefined \
+	  -DMESHIK_BUILD_PYTHON=OFF -DMESHIK_BUILD_PLUGIN=OFF -DMESHIK_BUILD_BENCH=OFF
+
+test-cpp: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+test-asan: setup $(BUILD_ASAN)/build.ninja
+	cmake --build $(BUILD_ASAN) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS)
+
+test-python: build
+	$(PY) -m pytest -q tests/python
+
+test: test-cpp test-asan test-python
+
+demo: build
+	$(PY) -m meshik.demo --out demo_output
+
+bench: build
+	$(PY) bench/run_bench.py
+
+plugin: setup $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS) --target plugins
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN) demo_output

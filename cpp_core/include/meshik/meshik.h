@@ -1,0 +1,130 @@
+// MeshIK public API: Mesh-Based Inverse Kinematics (Sumner et al. 2005).
+//
+// The precompute / solve split follows libigl's style:
+//   Solver solver(rest, examples, handles, options);   // validates, factors G'^T G' once
+//   SolveResult r = solver.solve(targets);              // per frame: Gauss-Newton on (x, w)
+//
+// All arrays are plain row-major buffers of doubles / ints so that the plugin and the Python
+// module can pass their own memory without copies of foreign types. No Eigen, Qt or Python here.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace meshik {
+
+// A triangle mesh viewed, not owned.
+//   vertices:  #V by 3 row-major list of vertex positions (x0 y0 z0 x1 y1 z1 ...)
+//   triangles: #F by 3 row-major list of 0-based vertex indices
+struct MeshView {
+  const double* vertices = nullptr;
+  int num_vertices = 0;
+  const int* triangles = nullptr;
+  int num_triangles = 0;
+};
+
+// How example deformation gradients are combined.
+//   kNonlinear: T_j(w) = exp(sum_i w_i log R_ij) * (I + sum_i w_i (S_ij - I)), T_ij = R_ij S_ij polar.
+//   kLinear:    T_j(w) = I + sum_i w_i (T_ij - I).
+// In both, w = 0 gives the rest pose and w = e_i gives example i.
+enum class FeatureSpace { kNonlinear, kLinear };
+
+struct SolverOptions {
+  FeatureSpace feature_space = FeatureSpace::kNonlinear;
+  // k in the energy ||G'x - (M(w) + c)||^2 + k ||w||^2 (pulls the pose towards the rest pose).
+  double weight_regularization = 0.0;
+  // Gauss-Newton stops after this many iterations ...
+  int max_iterations = 30;
+  // ... or when the relative energy decrease of an iteration falls below this.
+  double tolerance = 1e-10;
+};
+
+// Result of one solve.
+struct SolveResult {
+  std::vector<double> vertices;  // #V by 3 row-major posed vertex positions
+  std::vector<double> weights;   // #examples blend weights
+  int iterations = 0;            // Gauss-Newton iterations taken
+  double residual = 0.0;         // final energy ||G'x - (M(w) + c)||^2 + k ||w||^2
+  bool converged = false;        // stopped by the tolerance rather than max_iterations
+};
+
+// Called with a fraction in [0, 1] and a short stage name; return false to cancel
+// (the running call then throws Cancelled).
+using ProgressCallback = std::function<bool(double fraction, const std::string& stage)>;
+
+// Bad input. The message names the element: "triangle 812 has zero area in the rest mesh",
+// "example 2 vertex 17 has a non-finite coordinate", "handle 3 (vertex 9001) is out of range".
+class InputError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The user cancelled through the progress callback.
+class Cancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The rest mesh and #E example poses, validated, with their per-triangle features precomputed.
+// Shared (read-only) by Solver instances that differ only in their handle sets.
+class ExampleSet {
+ public:
+  // rest:     the rest mesh (#V vertices, #F triangles)
+  // examples: #E pointers, each to a #V by 3 row-major array (same vertex order and triangles as rest)
+  // Throws InputError on any invalid element.
+  // Precomputes what both feature spaces need (T_ij, and R_ij, log R_ij, S_ij).
+  ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,
+             const ProgressCallback& progress = {});
+  ~ExampleSet();
+  ExampleSet(ExampleSet&&) noexcept;
+  ExampleSet& operator=(ExampleSet&&) noexcept;
+
+  int num_vertices() const;
+  int num_triangles() const;
+  int num_examples() const;
+
+  // The combination of the examples with the given weights, no handles.
+  //   weights: #E values
+  // Returns #V by 3 row-major positions; translation fixed so that the centroid equals the
+  // centroid of the linearly blended vertex positions rest + sum_i w_i (example_i - rest).
+  std::vector<double> blend(const double* weights,
+                            FeatureSpace feature_space = FeatureSpace::kNonlinear) const;
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+class Solver {
+ public:
+  // examples: a shared, validated example set (kept alive by the solver)
+  // handles:  #H distinct vertex indices constrained by solve()
+  // Factors G'^T G' once; throws InputError (no handle, handle out of range or repeated,
+  // a connected component without a handle).
+  Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int>& handles,
+         const SolverOptions& options = {}, const ProgressCallback& progress = {});
+  ~Solver();
+  Solver(Solver&&) noexcept;
+  Solver& operator=(Solver&&) noexcept;
+
+  // targets:         #H by 3 row-major target positions, in the order of the handles
+  // initial_weights: #E starting weights (warm start), or nullptr for the rest pose (w = 0)
+  // Never refactors: only the right-hand side changes with the targets.
+  SolveResult solve(const double* targets, const double* initial_weights = nullptr,
+                    const ProgressCallback& progress = {}) const;
+
+  const ExampleSet& examples() const;
+  const std::vector<int>& handles() const;
+  const SolverOptions& options() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace meshik

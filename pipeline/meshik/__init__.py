@@ -1,0 +1,8 @@
+"""MeshIK: Mesh-Based Inverse Kinematics (Sumner, Zwicker, Gotsman, Popovic 2005).
+
+The solver itself is the C++ extension module ``meshik._core``; this package re-exports it and
+adds the batch pipeline (constraint files, simplification, posing, compressed export).
+"""
+from meshik._core import ExampleSet, InputError, SolveResult, Solver  # noqa: F401
+
+__all__ = ["ExampleSet", "InputError", "SolveResult", "Solver"]
