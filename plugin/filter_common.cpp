@@ -1,0 +1,58 @@
+#include "filter_common.h"
+
+#include "layer_arrays.h"
+
+#include <common/mlexception.h>
+#include <common/parameters/rich_parameters.h>
+
+#include <QStringList>
+
+namespace meshik::plugin {
+
+void addExampleParameters(RichParameterList& parameters) {
+  parameters.addParam(RichString(
+      "examplelayers", "", "Example layers",
+      "Which layers are the example poses. Empty: every layer other than the current (rest) layer with "
+      "the rest layer's vertex and triangle counts, except the target layer and the layers MeshIK "
+      "created (labels starting with \"MeshIK \"). Otherwise a comma-separated list of layer ids or "
+      "layer names, e.g. \"1, 2, 5\". Every example must have the rest layer's triangles."));
+  parameters.addParam(RichEnum(
+      "featurespace", 0, QStringList{"Nonlinear", "Linear"}, "Feature space",
+      "How the examples' deformation gradients are combined. Nonlinear (the paper's): rotations "
+      "and stretches are blended separately, so large rotations interpolate without shrinking. "
+      "Linear: the gradients are blended linearly (faster, fine for small deformations)."));
+}
+
+FeatureSpace featureSpace(const RichParameterList& parameters) {
+  return parameters.getEnum("featurespace") == 1 ? FeatureSpace::kLinear : FeatureSpace::kNonlinear;
+}
+
+ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList& parameters,
+                                const MeshModel* excluded) {
+  ExampleLayers layers;
+  layers.rest = document.mm();
+  if (layers.rest == nullptr) throw MLException("no current layer: load the rest mesh and make it the current layer");
+  compactLayer(*layers.rest);
+  if (layers.rest->cm.fn == 0) throw MLException("the rest layer " + describeLayer(*layers.rest) + " has no triangles");
+  layers.examples = exampleLayers(document, *layers.rest, parameters.getString("examplelayers"), excluded);
+  layers.arrays.rest = vertexPositions(*layers.rest);
+  layers.arrays.triangles = triangleIndices(*layers.rest);
+  for (const MeshModel* example : layers.examples) layers.arrays.examples.push_back(vertexPositions(*example));
+  return layers;
+}
+
+MeshModel& writeOutputLayer(MeshDocument& document, MeshModel& rest, const QString& what, bool in_place,
+                            const std::vector<double>& positions) {
+  MeshModel* output = &rest;
+  if (!in_place) output = document.addNewMesh(rest.cm, kOutputLabelPrefix + what + " of " + rest.label(), false);
+  setVertexPositions(*output, positions);
+  return *output;
+}
+
+QString formatWeights(const std::vector<double>& weights) {
+  QStringList items;
+  for (double w : weights) items << QString::number(w, 'g', 6);
+  return "[" + items.join(", ") + "]";
+}
+
+}  // namespace meshik::plugin
