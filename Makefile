@@ -8,12 +8,13 @@ BUILD_ASAN := build-asan
 JOBS ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all setup build test test-cpp test-asan test-python demo bench plugin clean
+.PHONY: all setup build test test-cpp test-asan test-python demo bench plugin gui-check clean
 
 all: build
 
 setup:
 	@scripts/setup.sh all
+	@scripts/fetch_meshlab_source.sh >/dev/null
 
 # Configure once (re-configured by CMake itself when its inputs change), then build incrementally.
 $(BUILD)/build.ninja: | setup
@@ -46,6 +47,12 @@ bench: build
 
 plugin: setup $(BUILD)/build.ninja
 	cmake --build $(BUILD) -j $(JOBS) --target plugins
+
+# The plugin in a real MeshLab GUI under Xvfb (builds that GUI the first time, ~10 minutes).
+# PRECISION=float (MeshLab releases) or double (as pymeshlab).
+PRECISION ?= float
+gui-check: setup $(BUILD)/build.ninja
+	BUILD=$(abspath $(BUILD)) JOBS=$(JOBS) scripts/gui_check.sh $(PRECISION)
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) demo_output
