@@ -42,10 +42,12 @@ download_tarball() {
     echo "fetch_meshlab_source: no Debian mirror found in the apt sources; set MESHLAB_SOURCE_DIR" >&2
     return 1
   fi
-  mkdir -p "$work/lists/partial"
+  mkdir -p "$work/lists/partial" "$work/cache/archives/partial"
   echo "deb-src ${mirror%/} sid main" > "$work/sources.list"
+  # Everything apt writes (lists, caches) stays in $work: the system's apt state is untouched.
   local opts=(-o "Dir::Etc::SourceList=$work/sources.list" -o Dir::Etc::SourceParts=/dev/null
-              -o "Dir::State::Lists=$work/lists" -o Debug::NoLocking=1)
+              -o "Dir::State::Lists=$work/lists" -o "Dir::Cache=$work/cache" -o Debug::NoLocking=1
+              -o APT::Sandbox::User=root)
   apt-get "${opts[@]}" update -qq
   # apt downloads and checks the orig tarball against the Sources index, then fails on the
   # .dsc / .debian.tar.xz the mirror no longer has: the tarball alone is what we need.
