@@ -110,8 +110,15 @@ no_dialog() { ! xdotool search --name "$1" >/dev/null 2>&1 || { shot "error_dial
 shot() { import -window root "$out/$1.png"; }
 shot_window() { eval "$(xdotool getwindowgeometry --shell "$2")"; import -window root -crop "${WIDTH}x${HEIGHT}+${X}+${Y}" "$out/$1.png"; }
 
-main_window=$(wait_window "MeshLab $version" 60) || fail "no MeshLab window within 60 s (see $out/meshlab.log)"
-sleep 3  # plugins load before the window shows; a failing one opens its dialog right after
+# A plugin that fails to load is reported only in a modal dialog, shown before the main window.
+deadline=$((SECONDS + 60))
+until main_window=$(xdotool search --name "MeshLab $version" 2>/dev/null | head -n 1) && [[ -n $main_window ]]; do
+  no_dialog "Error while loading plugins"
+  alive
+  ((SECONDS < deadline)) || { shot "no_window"; fail "no MeshLab window within 60 s (see $out/meshlab.log)"; }
+  sleep 0.25
+done
+sleep 3
 no_dialog "Error while loading plugins"
 alive
 # Full screen, so that the layer list and the dialogs land where the steps below expect them.
