@@ -53,4 +53,13 @@ std::vector<int> tree_postorder(const std::vector<int>& parent) {
   return post;
 }
 
+std::vector<int> relabel_tree(const std::vector<int>& parent, const std::vector<int>& post) {
+  const int n = static_cast<int>(parent.size());
+  std::vector<int> new_index(n);
+  for (int k = 0; k < n; ++k) new_index[post[k]] = k;
+  std::vector<int> relabeled(n);
+  for (int k = 0; k < n; ++k) relabeled[k] = parent[post[k]] == -1 ? -1 : new_index[parent[post[k]]];
+  return relabeled;
+}
+
 }  // namespace meshik::sparse

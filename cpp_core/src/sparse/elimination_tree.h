@@ -17,4 +17,8 @@ std::vector<int> elimination_tree(const Pattern& upper);
 // descendants, the descendants of a node contiguous).
 std::vector<int> tree_postorder(const std::vector<int>& parent);
 
+// parent: a forest, post: a postorder of it. Returns the same forest with node post[k]
+// renamed k (n entries, -1 for roots).
+std::vector<int> relabel_tree(const std::vector<int>& parent, const std::vector<int>& post);
+
 }  // namespace meshik::sparse

@@ -8,9 +8,12 @@
 #include "sparse/column_counts.h"
 #include "sparse/elimination_tree.h"
 #include "sparse/input_check.h"
+#include "sparse/numeric.h"
 #include "sparse/ordering.h"
 #include "sparse/permuted_matrix.h"
-#include "sparse/simplicial_factor.h"
+#include "sparse/supernodes.h"
+#include "sparse/symbolic.h"
+#include "sparse/triangular_solve.h"
 
 namespace meshik {
 
@@ -19,12 +22,10 @@ using namespace sparse;
 struct SparseCholesky::Impl {
   // The analysed pattern, to check that factorize() gets the same one.
   std::vector<int> input_col_start, input_row_index;
-  std::vector<int> perm;          // perm[k]: original index of pivot k
-  PermutedMatrix upper;           // upper triangle of P A P^T, with sources into A's values
-  std::vector<int> parent;        // elimination tree of P A P^T
-  std::vector<int> counts;        // column counts of L
-  SimplicialFactor factor;
-  std::vector<double> permuted_values;  // values of `upper`, gathered per factorize()
+  std::vector<int> perm;   // perm[k]: original index of pivot k (fill-reducing, then postordered)
+  PermutedMatrix lower;    // lower triangle of P A P^T, with sources into A's values
+  SymbolicFactor symbolic;
+  std::vector<double> values;  // the supernodes' dense blocks
   bool factorized = false;
 };
 
@@ -38,12 +39,23 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   Impl fresh;
   fresh.input_col_start = a.col_start;
   fresh.input_row_index = a.row_index;
-  fresh.perm = minimum_degree_ordering(lower_pattern(a));
-  fresh.upper = permute_symmetric(a, invert_permutation(fresh.perm), Triangle::kUpper);
-  fresh.parent = elimination_tree(fresh.upper.pattern);
-  const std::vector<int> post = tree_postorder(fresh.parent);
-  fresh.counts = column_counts(transpose(fresh.upper.pattern), fresh.parent, post);
-  fresh.factor = allocate_simplicial(fresh.counts);
+  // Minimum degree, then a postorder of its elimination tree so that supernodes are runs of
+  // consecutive columns.
+  const std::vector<int> amd = minimum_degree_ordering(lower_pattern(a));
+  const Pattern upper = permute_symmetric(a, invert_permutation(amd), Triangle::kUpper).pattern;
+  const std::vector<int> amd_parent = elimination_tree(upper);
+  const std::vector<int> post = tree_postorder(amd_parent);
+  const std::vector<int> amd_counts = column_counts(transpose(upper), amd_parent, post);
+  const int n = a.cols;
+  fresh.perm.resize(n);
+  std::vector<int> counts(n);
+  for (int k = 0; k < n; ++k) {
+    fresh.perm[k] = amd[post[k]];
+    counts[k] = amd_counts[post[k]];
+  }
+  const std::vector<int> parent = relabel_tree(amd_parent, post);
+  fresh.lower = permute_symmetric(a, invert_permutation(fresh.perm), Triangle::kLower);
+  fresh.symbolic = symbolic_factor(fresh.lower.pattern, find_supernodes(parent, counts), counts);
   *impl_ = std::move(fresh);
 }
 
@@ -57,10 +69,8 @@ void SparseCholesky::factorize(const CscMatrix& a) {
                                 std::to_string(a.values.size()) + " entries, expected " +
                                 std::to_string(a.row_index.size()));
   s.factorized = false;
-  s.permuted_values.resize(s.upper.source.size());
-  for (size_t p = 0; p < s.upper.source.size(); ++p)
-    s.permuted_values[p] = a.values[s.upper.source[p]];
-  factorize_up_looking(s.upper.pattern, s.permuted_values.data(), s.parent, s.perm, s.factor);
+  const LowerValues values{&s.lower.pattern, s.lower.source.data(), a.values.data()};
+  factorize_supernodal(s.symbolic, values, s.perm, s.values);
   s.factorized = true;
 }
 
@@ -75,20 +85,17 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   if (nrhs < 0) throw std::invalid_argument("SparseCholesky::solve: nrhs must be >= 0");
   const int n = size();
   const size_t width = static_cast<size_t>(nrhs);
-  std::vector<double> x(static_cast<size_t>(n) * width);
-  for (int k = 0; k < n; ++k)
-    std::copy_n(b + s.perm[k] * width, width, x.data() + k * width);
-  solve_simplicial(s.factor, x.data(), nrhs);
-  for (int k = 0; k < n; ++k)
-    std::copy_n(x.data() + k * width, width, b + s.perm[k] * width);
+  // Reused per thread: a fresh buffer would cost page faults on every solve.
+  thread_local std::vector<double> x;
+  x.resize(static_cast<size_t>(n) * width);
+  for (int k = 0; k < n; ++k) std::copy_n(b + s.perm[k] * width, width, x.data() + k * width);
+  forward_solve(s.symbolic, s.values, x.data(), nrhs);
+  backward_solve(s.symbolic, s.values, x.data(), nrhs);
+  for (int k = 0; k < n; ++k) std::copy_n(x.data() + k * width, width, b + s.perm[k] * width);
 }
 
 int SparseCholesky::size() const { return static_cast<int>(impl_->perm.size()); }
 
-long long SparseCholesky::factor_nonzeros() const {
-  long long total = 0;
-  for (int c : impl_->counts) total += c;
-  return total;
-}
+long long SparseCholesky::factor_nonzeros() const { return impl_->symbolic.structural_nonzeros; }
 
 }  // namespace meshik
