@@ -86,9 +86,10 @@ pids=()
 cleanup() { local pid; for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; }
 trap cleanup EXIT
 Xvfb "$DISPLAY" -screen 0 1600x1000x24 -nolisten tcp >"$out/xvfb.log" 2>&1 &
-pids+=($!)
+xvfb_pid=$!
+pids+=("$xvfb_pid")
 for _ in $(seq 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.1; done
-xdpyinfo >/dev/null 2>&1 || fail "Xvfb did not start (see $out/xvfb.log)"
+xdpyinfo >/dev/null 2>&1 && kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb did not start on $DISPLAY (see $out/xvfb.log)"
 
 step "starting $meshlab with $sample ($num_layers layers)"
 LIBGL_ALWAYS_SOFTWARE=1 XDG_CONFIG_HOME=$out/config XDG_DATA_HOME=$out/data XDG_RUNTIME_DIR=$out/runtime \
@@ -105,7 +106,10 @@ wait_window() {
   done
   return 1
 }
-alive() { kill -0 "$meshlab_pid" 2>/dev/null || fail "MeshLab is no longer running (see $out/meshlab.log)"; }
+alive() {
+  kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb on $DISPLAY exited (see $out/xvfb.log)"
+  kill -0 "$meshlab_pid" 2>/dev/null || fail "MeshLab is no longer running (see $out/meshlab.log)"
+}
 no_dialog() { ! xdotool search --name "$1" >/dev/null 2>&1 || { shot "error_dialog"; fail "MeshLab shows the dialog \"$1\""; }; }
 shot() { import -window root "$out/$1.png"; }
 shot_window() { eval "$(xdotool getwindowgeometry --shell "$2")"; import -window root -crop "${WIDTH}x${HEIGHT}+${X}+${Y}" "$out/$1.png"; }
