@@ -1,6 +1,7 @@
 """The MeshIK filters loaded into pymeshlab 2025.7 give the Python API's results (meshik.Solver,
 meshik.ExampleSet) for the same meshes, handles and targets, on the samples and on the horse."""
 import json
+import re
 import subprocess
 import sys
 
@@ -186,6 +187,28 @@ def test_parameter_lists_document_every_parameter():
         printed = subprocess.run([sys.executable, "-c", script], check=True, capture_output=True, text=True).stdout
         listed = [line.strip().split(" = ")[0] for line in printed.splitlines() if " : " in line]
         assert listed == parameters, printed
+
+
+def test_progress_reaches_the_hosts_callback():
+    # pymeshlab prints the callback's messages with verbosity on (from C++: read a child process).
+    rest_path, example_paths = sample_files("bar")
+    script = "\n".join([
+        "import pymeshlab",
+        f"pymeshlab.load_plugin({str(plugin_path('double'))!r})",
+        "ms = pymeshlab.MeshSet(verbose=True)",
+        *[f"ms.load_new_mesh({str(p)!r})" for p in [rest_path, *example_paths]],
+        "ms.set_current_mesh(0)",
+        f"ms.apply_filter({POSE!r}, targetsource='Constraint file', "
+        f"constraintfile={str(SAMPLES / 'bar' / 'animation.json')!r}, frame='5')",
+    ])
+    child = subprocess.run([sys.executable, "-c", script], check=True, capture_output=True, text=True)
+    printed = child.stdout + child.stderr
+    progress = re.findall(r"MeshIK: ([^\[\n]+?)\s+\[ (\d+)% \]", printed)
+    stages = [stage for stage, _ in progress]
+    assert "example features" in stages and "factorizing" in stages, printed
+    assert any(stage.startswith("Gauss-Newton iteration") for stage in stages), printed
+    percents = [int(percent) for _, percent in progress]
+    assert percents == sorted(percents) and percents[-1] <= 99, printed
 
 
 def test_filters_work_on_meshes_built_in_python():
