@@ -6,8 +6,10 @@
 #include <QJsonDocument>
 #include <QJsonParseError>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -250,8 +252,8 @@ std::vector<double> groupTargets(const TargetSpec& spec, const std::vector<doubl
   return moved;
 }
 
-// The 0-based index of the frame named `frame`, or else numbered `frame`; ConstraintFileError-worthy
-// SchemaViolation when there is none.
+// The 0-based index of the frame named `frame`, or else numbered `frame`; SchemaViolation when
+// there is none.
 int findFrame(const std::vector<FrameSpec>& frames, const QString& frame) {
   for (size_t i = 0; i < frames.size(); ++i)
     if (frames[i].name == frame) return static_cast<int>(i);

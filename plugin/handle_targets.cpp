@@ -9,7 +9,6 @@
 #include <QFileInfo>
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 
 namespace meshik::plugin {
