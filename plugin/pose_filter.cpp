@@ -34,8 +34,6 @@ RichParameterList poseParameters(const MeshDocument& document) {
 
 std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, MeshDocument& document,
                                           vcg::CallBackPos* callback, SolverCache& cache, const Logger& log) {
-  QElapsedTimer clock;
-  clock.start();
   if (document.mm() == nullptr) throw MLException("no current layer: load the rest mesh and make it the current layer");
   MeshModel* target = targetLayer(parameters, document, *document.mm());
   ExampleLayers layers = readExampleLayers(document, parameters, target);
@@ -49,6 +47,8 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
   if (!(options.weight_regularization >= 0.0)) throw MLException("weightregularization: expected a number >= 0");
 
+  QElapsedTimer clock;
+  clock.start();
   const auto example_set = cache.exampleSet(std::move(layers.arrays), progressRange(callback, 2, 30));
   const qint64 precompute_ms = clock.restart();
   bool reused = false;
