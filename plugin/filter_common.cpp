@@ -34,9 +34,10 @@ ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList&
   if (layers.rest == nullptr) throw MLException("no current layer: load the rest mesh and make it the current layer");
   compactLayer(*layers.rest);
   if (layers.rest->cm.fn == 0) throw MLException("the rest layer " + describeLayer(*layers.rest) + " has no triangles");
-  layers.examples = exampleLayers(document, *layers.rest, parameters.getString("examplelayers"), excluded);
   layers.arrays.rest = vertexPositions(*layers.rest);
   layers.arrays.triangles = triangleIndices(*layers.rest);
+  layers.examples = exampleLayers(document, *layers.rest, layers.arrays.triangles,
+                                  parameters.getString("examplelayers"), excluded);
   for (const MeshModel* example : layers.examples) layers.arrays.examples.push_back(vertexPositions(*example));
   return layers;
 }

@@ -87,7 +87,8 @@ bool isDefaultExample(const MeshModel& layer, const MeshModel& rest, const MeshM
          layer.cm.vn == rest.cm.vn && layer.cm.fn == rest.cm.fn;
 }
 
-std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& rest, const QString& spec,
+std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& rest,
+                                      const std::vector<int>& rest_triangles, const QString& spec,
                                       const MeshModel* excluded) {
   std::vector<MeshModel*> examples;
   if (spec.trimmed().isEmpty()) {
@@ -111,7 +112,6 @@ std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& r
     throw MLException(QStringLiteral("no example layer: load the example poses as layers with the rest layer %1's "
                                      "%2 vertices and %3 triangles")
                           .arg(describeLayer(rest)).arg(rest.cm.vn).arg(rest.cm.fn));
-  const std::vector<int> rest_triangles = triangleIndices(rest);
   for (const MeshModel* example : examples) checkSameTopology(*example, rest, rest_triangles);
   return examples;
 }

@@ -39,12 +39,13 @@ extern const QString kOutputLabelPrefix;
 // nor one of MeshIK's output layers.
 bool isDefaultExample(const MeshModel& layer, const MeshModel& rest, const MeshModel* excluded);
 
-// The example layers for the rest layer, compacted:
+// The example layers, compacted, for the rest layer with #F by 3 `rest_triangles`:
 //   spec empty: every layer for which isDefaultExample() holds;
 //   otherwise:  the layers named in `spec`, a comma-separated list of layer ids or labels.
 // Throws MLException when there is none, when a named layer does not exist or is the rest layer,
 // or when an example's triangles differ from the rest layer's (naming the layer and triangle).
-std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& rest, const QString& spec,
+std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& rest,
+                                      const std::vector<int>& rest_triangles, const QString& spec,
                                       const MeshModel* excluded);
 
 }  // namespace meshik::plugin
