@@ -35,7 +35,8 @@ std::vector<double> parseWeights(const QString& text, size_t num_examples) {
   }
   if (weights.size() != num_examples)
     throw MLException(QStringLiteral("weights: expected %1 numbers (one per example layer), got %2")
-                          .arg(num_examples).arg(weights.size()));
+                          .arg(num_examples)
+                          .arg(weights.size()));
   return weights;
 }
 
@@ -53,14 +54,17 @@ RichParameterList blendParameters(const MeshDocument& document) {
 }
 
 std::map<std::string, QVariant> applyBlend(const RichParameterList& parameters, MeshDocument& document,
-                                           vcg::CallBackPos* callback, SolverCache& cache, const Logger& log) {
+                                           vcg::CallBackPos* callback, SolverCache& cache,
+                                           const Logger& log) {
   ExampleLayers layers = readExampleLayers(document, parameters, nullptr);
   const std::vector<double> weights = parseWeights(parameters.getString("weights"), layers.examples.size());
   const auto example_set = cache.exampleSet(std::move(layers.arrays), progressRange(callback, 0, 90));
   const std::vector<double> positions = example_set->blend(weights.data(), featureSpace(parameters));
   MeshModel& output = writeOutputLayer(document, *layers.rest, "blend", false, positions);
   log(QStringLiteral("MeshIK blend: weights %1 of %2 example layers written to %3")
-          .arg(formatWeights(weights)).arg(layers.examples.size()).arg(output.label()));
+          .arg(formatWeights(weights))
+          .arg(layers.examples.size())
+          .arg(output.label()));
   return {{"layer_id", QVariant(output.id())}};
 }
 

@@ -36,7 +36,7 @@ struct TargetSpec {
   std::vector<double> positions;  // #group by 3, empty for a rigid motion
   Mat3 rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};
   Vec3 translation{0, 0, 0};
-  std::optional<Vec3> center;     // none: the centroid of the group's rest positions
+  std::optional<Vec3> center;  // none: the centroid of the group's rest positions
 };
 
 struct FrameSpec {
@@ -49,9 +49,11 @@ Mat3 axisAngleMatrix(const Vec3& axis, double degrees) {
   const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   const double x = axis[0] / length, y = axis[1] / length, z = axis[2] / length;
   const double angle = degrees * M_PI / 180.0, c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  // clang-format off
   return {t * x * x + c,     t * x * y - s * z, t * x * z + s * y,
           t * x * y + s * z, t * y * y + c,     t * y * z - s * x,
           t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+  // clang-format on
 }
 
 // Whether a row-major 3 by 3 matrix is orthonormal with determinant +1, within 1e-5.
@@ -85,14 +87,19 @@ std::vector<HandleSpec> parseHandles(const QJsonValue& value) {
       for (int i = 0; i < indices.size(); ++i) {
         const int index = expectInt(indices[i], childPath(path, i), 0, "a vertex index");
         if (owner.count(index))
-          throw SchemaViolation(childPath(path, i), QStringLiteral("vertex %1 is already a handle %2").arg(index)
-              .arg(owner[index] == it.key() ? "earlier in this group" : "in handle group \"" + owner[index] + "\""));
+          throw SchemaViolation(
+              childPath(path, i),
+              QStringLiteral("vertex %1 is already a handle %2")
+                  .arg(index)
+                  .arg(owner[index] == it.key() ? "earlier in this group"
+                                                : "in handle group \"" + owner[index] + "\""));
         owner[index] = it.key();
         spec.vertices.push_back(index);
       }
     } else {
-      throw SchemaViolation(path, "expected a list of vertex indices or a region {\"near\", \"radius\"}, got " +
-                                      describe(it.value()));
+      throw SchemaViolation(path,
+                            "expected a list of vertex indices or a region {\"near\", \"radius\"}, got " +
+                                describe(it.value()));
     }
     handles.push_back(std::move(spec));
   }
@@ -125,7 +132,8 @@ TargetSpec parseRigid(const QJsonObject& spec, const QString& path) {
   }
   if (!spec.contains("translate") && !spec.contains("rotate"))
     throw SchemaViolation(path, "expected \"translate\", \"rotate\" or \"matrix\"");
-  if (spec.contains("translate")) target.translation = expectNumbers<3>(spec["translate"], childPath(path, "translate"));
+  if (spec.contains("translate"))
+    target.translation = expectNumbers<3>(spec["translate"], childPath(path, "translate"));
   if (spec.contains("rotate")) {
     const QString rotate_path = childPath(path, "rotate");
     const QJsonObject rotate = expectObject(spec["rotate"], rotate_path);
@@ -133,9 +141,12 @@ TargetSpec parseRigid(const QJsonObject& spec, const QString& path) {
     const Vec3 axis = expectNumbers<3>(rotate["axis"], childPath(rotate_path, "axis"));
     const double length = std::hypot(axis[0], axis[1], axis[2]);
     if (!std::isfinite(length) || length < 1e-12)
-      throw SchemaViolation(childPath(rotate_path, "axis"), "the rotation axis must have a non-zero, finite length");
-    target.rotation = axisAngleMatrix(axis, expectNumber(rotate["degrees"], childPath(rotate_path, "degrees")));
-    if (rotate.contains("center")) target.center = expectNumbers<3>(rotate["center"], childPath(rotate_path, "center"));
+      throw SchemaViolation(childPath(rotate_path, "axis"),
+                            "the rotation axis must have a non-zero, finite length");
+    target.rotation =
+        axisAngleMatrix(axis, expectNumber(rotate["degrees"], childPath(rotate_path, "degrees")));
+    if (rotate.contains("center"))
+      target.center = expectNumbers<3>(rotate["center"], childPath(rotate_path, "center"));
   }
   return target;
 }
@@ -144,11 +155,13 @@ TargetSpec parseRigid(const QJsonObject& spec, const QString& path) {
 TargetSpec parseTarget(const QJsonValue& value, const HandleSpec& handle, const QString& path) {
   if (value.isObject()) return parseRigid(value.toObject(), path);
   if (!value.isArray())
-    throw SchemaViolation(path, "expected a list of [x, y, z] positions or a rigid motion object, got " + describe(value));
+    throw SchemaViolation(
+        path, "expected a list of [x, y, z] positions or a rigid motion object, got " + describe(value));
   const QJsonArray list = value.toArray();
   if (!handle.vertices.empty() && list.size() != static_cast<int>(handle.vertices.size()))
     throw SchemaViolation(path, QStringLiteral("expected %1 positions (one per handle vertex), got %2")
-                                    .arg(handle.vertices.size()).arg(list.size()));
+                                    .arg(handle.vertices.size())
+                                    .arg(list.size()));
   if (list.isEmpty()) throw SchemaViolation(path, "expected at least one position");
   TargetSpec target;
   target.path = path;
@@ -171,18 +184,22 @@ std::vector<FrameSpec> parseFrames(const QJsonValue& value, const std::vector<Ha
     spec.name = frame.contains("name") ? expectString(frame["name"], childPath(path, "name"))
                                        : QStringLiteral("%1").arg(number + 1, 4, 10, QChar('0'));
     if (seen.count(spec.name))
-      throw SchemaViolation(childPath(path, "name"), QStringLiteral("\"%1\" is also the name of frames[%2]")
-                                                         .arg(spec.name).arg(seen[spec.name]));
+      throw SchemaViolation(
+          childPath(path, "name"),
+          QStringLiteral("\"%1\" is also the name of frames[%2]").arg(spec.name).arg(seen[spec.name]));
     seen[spec.name] = number;
     const QString targets_path = childPath(path, "targets");
-    const QJsonObject targets = expectObject(frame.contains("targets") ? frame["targets"] : QJsonObject(), targets_path);
+    const QJsonObject targets =
+        expectObject(frame.contains("targets") ? frame["targets"] : QJsonObject(), targets_path);
     for (auto it = targets.begin(); it != targets.end(); ++it) {
       const QString target_path = childPath(targets_path, it.key());
-      auto handle = std::find_if(handles.begin(), handles.end(), [&](const HandleSpec& h) { return h.name == it.key(); });
+      auto handle = std::find_if(handles.begin(), handles.end(),
+                                 [&](const HandleSpec& h) { return h.name == it.key(); });
       if (handle == handles.end()) {
         QStringList known;
         for (const HandleSpec& h : handles) known << "\"" + h.name + "\"";
-        throw SchemaViolation(target_path, "no handle group named \"" + it.key() + "\" (groups: " + known.join(", ") + ")");
+        throw SchemaViolation(
+            target_path, "no handle group named \"" + it.key() + "\" (groups: " + known.join(", ") + ")");
       }
       spec.targets[it.key()] = parseTarget(it.value(), *handle, target_path);
     }
@@ -193,7 +210,8 @@ std::vector<FrameSpec> parseFrames(const QJsonValue& value, const std::vector<Ha
 
 // Vertex indices of every group, in the order of `handles`; SchemaViolation for out-of-range,
 // empty or overlapping groups.
-std::vector<std::vector<int>> resolveGroups(const std::vector<HandleSpec>& handles, const double* rest, int num_vertices) {
+std::vector<std::vector<int>> resolveGroups(const std::vector<HandleSpec>& handles, const double* rest,
+                                            int num_vertices) {
   std::vector<std::vector<int>> groups;
   std::vector<int> owner(num_vertices, -1);
   for (const HandleSpec& spec : handles) {
@@ -202,22 +220,32 @@ std::vector<std::vector<int>> resolveGroups(const std::vector<HandleSpec>& handl
     for (size_t i = 0; i < indices.size(); ++i)
       if (indices[i] >= num_vertices)
         throw SchemaViolation(childPath(path, static_cast<int>(i)),
-            QStringLiteral("vertex %1 is out of range (the rest mesh has %2 vertices)").arg(indices[i]).arg(num_vertices));
+                              QStringLiteral("vertex %1 is out of range (the rest mesh has %2 vertices)")
+                                  .arg(indices[i])
+                                  .arg(num_vertices));
     if (spec.near) {
       double nearest = std::numeric_limits<double>::infinity();
       for (int v = 0; v < num_vertices; ++v) {
         const double* p = rest + 3 * v;
-        const double distance = std::hypot(p[0] - (*spec.near)[0], p[1] - (*spec.near)[1], p[2] - (*spec.near)[2]);
+        const double distance =
+            std::hypot(p[0] - (*spec.near)[0], p[1] - (*spec.near)[1], p[2] - (*spec.near)[2]);
         nearest = std::min(nearest, distance);
         if (distance <= spec.radius) indices.push_back(v);
       }
       if (indices.empty())
-        throw SchemaViolation(path, QStringLiteral("no rest vertex within radius %1 of [%2, %3, %4] (the nearest is %5 away)")
-            .arg(spec.radius).arg((*spec.near)[0]).arg((*spec.near)[1]).arg((*spec.near)[2]).arg(nearest));
+        throw SchemaViolation(
+            path, QStringLiteral("no rest vertex within radius %1 of [%2, %3, %4] (the nearest is %5 away)")
+                      .arg(spec.radius)
+                      .arg((*spec.near)[0])
+                      .arg((*spec.near)[1])
+                      .arg((*spec.near)[2])
+                      .arg(nearest));
     }
     for (int v : indices) {
       if (owner[v] >= 0)
-        throw SchemaViolation(path, QStringLiteral("vertex %1 is also in handle group \"%2\"").arg(v).arg(handles[owner[v]].name));
+        throw SchemaViolation(
+            path,
+            QStringLiteral("vertex %1 is also in handle group \"%2\"").arg(v).arg(handles[owner[v]].name));
       owner[v] = static_cast<int>(groups.size());
     }
     groups.push_back(std::move(indices));
@@ -231,7 +259,8 @@ std::vector<double> groupTargets(const TargetSpec& spec, const std::vector<doubl
   if (!spec.positions.empty()) {
     if (spec.positions.size() != rest_positions.size())
       throw SchemaViolation(spec.path, QStringLiteral("expected %1 positions (one per handle vertex), got %2")
-                                           .arg(count).arg(spec.positions.size() / 3));
+                                           .arg(count)
+                                           .arg(spec.positions.size() / 3));
     return spec.positions;
   }
   Vec3 center{0, 0, 0};
@@ -262,14 +291,18 @@ int findFrame(const std::vector<FrameSpec>& frames, const QString& frame) {
   if (is_number && index >= 0 && index < static_cast<int>(frames.size())) return index;
   throw SchemaViolation("frames", QStringLiteral("no frame named or numbered \"%1\" (the file has %2 frames, "
                                                  "numbered from 0, named %3 ... %4)")
-                                      .arg(frame).arg(frames.size()).arg(frames.front().name).arg(frames.back().name));
+                                      .arg(frame)
+                                      .arg(frames.size())
+                                      .arg(frames.front().name)
+                                      .arg(frames.back().name));
 }
 
 QJsonObject parseJson(const QString& path) {
   QFile file(path);
   if (!file.exists()) throw ConstraintFileError((path + ": constraint file not found").toStdString());
   if (!file.open(QIODevice::ReadOnly))
-    throw ConstraintFileError((path + ": cannot read the constraint file: " + file.errorString()).toStdString());
+    throw ConstraintFileError(
+        (path + ": cannot read the constraint file: " + file.errorString()).toStdString());
   const QByteArray text = file.readAll();
   QJsonParseError error;
   const QJsonDocument document = QJsonDocument::fromJson(text, &error);
@@ -278,7 +311,11 @@ QJsonObject parseJson(const QString& path) {
     const int line = before.count('\n') + 1;
     const int column = error.offset - (before.lastIndexOf('\n') + 1) + 1;
     throw ConstraintFileError(QStringLiteral("%1: not valid JSON: line %2 column %3: %4")
-                                  .arg(path).arg(line).arg(column).arg(error.errorString()).toStdString());
+                                  .arg(path)
+                                  .arg(line)
+                                  .arg(column)
+                                  .arg(error.errorString())
+                                  .toStdString());
   }
   if (!document.isObject())
     throw ConstraintFileError((path + ": top level: expected an object").toStdString());
@@ -297,8 +334,10 @@ ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, c
       throw SchemaViolation("format", "expected \"" + kFormatName + "\", got " + describe(top["format"]));
     const int version = expectInt(top["version"], "version", 1, "an integer version");
     if (version != kFormatVersion)
-      throw SchemaViolation("version", QStringLiteral("version %1 is not supported (this MeshIK reads version %2)")
-                                           .arg(version).arg(kFormatVersion));
+      throw SchemaViolation("version",
+                            QStringLiteral("version %1 is not supported (this MeshIK reads version %2)")
+                                .arg(version)
+                                .arg(kFormatVersion));
     const std::vector<HandleSpec> handles = parseHandles(top["handles"]);
     const std::vector<FrameSpec> frames = parseFrames(top["frames"], handles);
     const int chosen = findFrame(frames, frame);
@@ -307,7 +346,8 @@ ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, c
     // Every group starts at its rest positions and takes each frame's target up to the chosen one.
     std::vector<std::vector<double>> rest_positions(groups.size()), current(groups.size());
     for (size_t g = 0; g < groups.size(); ++g) {
-      for (int v : groups[g]) rest_positions[g].insert(rest_positions[g].end(), rest_vertices + 3 * v, rest_vertices + 3 * v + 3);
+      for (int v : groups[g])
+        rest_positions[g].insert(rest_positions[g].end(), rest_vertices + 3 * v, rest_vertices + 3 * v + 3);
       current[g] = rest_positions[g];
     }
     for (int f = 0; f <= chosen; ++f)

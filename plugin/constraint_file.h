@@ -36,7 +36,7 @@ struct ConstraintFrame {
 //   frame:         a frame name, or else a 0-based frame index ("0", "12")
 //   rest_vertices: #V by 3 row-major rest positions (regions and rigid motions use them)
 // Throws ConstraintFileError.
-ConstraintFrame readConstraintFrame(const QString& path, const QString& frame,
-                                    const double* rest_vertices, int num_vertices);
+ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, const double* rest_vertices,
+                                    int num_vertices);
 
 }  // namespace meshik::plugin

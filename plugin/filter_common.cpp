@@ -16,11 +16,11 @@ void addExampleParameters(RichParameterList& parameters) {
       "the rest layer's vertex and triangle counts, except the target layer and the layers MeshIK "
       "created (labels starting with \"MeshIK \"). Otherwise a comma-separated list of layer ids or "
       "layer names, e.g. \"1, 2, 5\". Every example must have the rest layer's triangles."));
-  parameters.addParam(RichEnum(
-      "featurespace", 0, QStringList{"Nonlinear", "Linear"}, "Feature space",
-      "How the examples' deformation gradients are combined. Nonlinear (the paper's): rotations "
-      "and stretches are blended separately, so large rotations interpolate without shrinking. "
-      "Linear: the gradients are blended linearly (faster, fine for small deformations)."));
+  parameters.addParam(
+      RichEnum("featurespace", 0, QStringList{"Nonlinear", "Linear"}, "Feature space",
+               "How the examples' deformation gradients are combined. Nonlinear (the paper's): rotations "
+               "and stretches are blended separately, so large rotations interpolate without shrinking. "
+               "Linear: the gradients are blended linearly (faster, fine for small deformations)."));
 }
 
 FeatureSpace featureSpace(const RichParameterList& parameters) {
@@ -31,21 +31,25 @@ ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList&
                                 const MeshModel* excluded) {
   ExampleLayers layers;
   layers.rest = document.mm();
-  if (layers.rest == nullptr) throw MLException("no current layer: load the rest mesh and make it the current layer");
+  if (layers.rest == nullptr)
+    throw MLException("no current layer: load the rest mesh and make it the current layer");
   compactLayer(*layers.rest);
-  if (layers.rest->cm.fn == 0) throw MLException("the rest layer " + describeLayer(*layers.rest) + " has no triangles");
+  if (layers.rest->cm.fn == 0)
+    throw MLException("the rest layer " + describeLayer(*layers.rest) + " has no triangles");
   layers.arrays.rest = vertexPositions(*layers.rest);
   layers.arrays.triangles = triangleIndices(*layers.rest);
   layers.examples = exampleLayers(document, *layers.rest, layers.arrays.triangles,
                                   parameters.getString("examplelayers"), excluded);
-  for (const MeshModel* example : layers.examples) layers.arrays.examples.push_back(vertexPositions(*example));
+  for (const MeshModel* example : layers.examples)
+    layers.arrays.examples.push_back(vertexPositions(*example));
   return layers;
 }
 
 MeshModel& writeOutputLayer(MeshDocument& document, MeshModel& rest, const QString& what, bool in_place,
                             const std::vector<double>& positions) {
   MeshModel* output = &rest;
-  if (!in_place) output = document.addNewMesh(rest.cm, kOutputLabelPrefix + what + " of " + rest.label(), false);
+  if (!in_place)
+    output = document.addNewMesh(rest.cm, kOutputLabelPrefix + what + " of " + rest.label(), false);
   setVertexPositions(*output, positions);
   return *output;
 }

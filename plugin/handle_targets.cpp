@@ -15,7 +15,8 @@ namespace meshik::plugin {
 
 void addHandleTargetParameters(RichParameterList& parameters, const MeshDocument& document) {
   parameters.addParam(RichEnum(
-      "targetsource", 0, QStringList{"Target layer", "Constraint file", "Handle transform"}, "Handle targets from",
+      "targetsource", 0, QStringList{"Target layer", "Constraint file", "Handle transform"},
+      "Handle targets from",
       "Where the handles' target positions come from. <b>Target layer</b>: the handles (the selected "
       "vertices of the current layer) go to their positions in the target layer. <b>Constraint file</b>: "
       "the handles and targets of one frame of a MeshIK constraint file (when vertices are selected, "
@@ -43,14 +44,19 @@ void addHandleTargetParameters(RichParameterList& parameters, const MeshDocument
 }
 
 MeshModel* targetLayer(const RichParameterList& parameters, MeshDocument& document, const MeshModel& rest) {
-  if (static_cast<TargetSource>(parameters.getEnum("targetsource")) != TargetSource::kTargetLayer) return nullptr;
+  if (static_cast<TargetSource>(parameters.getEnum("targetsource")) != TargetSource::kTargetLayer)
+    return nullptr;
   const unsigned id = parameters.getMeshId("targetmesh");
   MeshModel* target = document.getMesh(id);
   if (target == nullptr) throw MLException(QStringLiteral("targetmesh: there is no layer %1").arg(id));
   compactLayer(*target);
   if (target->cm.vn != rest.cm.vn)
-    throw MLException(QStringLiteral("targetmesh: the target layer %1 has %2 vertices, the rest layer %3 has %4")
-                          .arg(describeLayer(*target)).arg(target->cm.vn).arg(describeLayer(rest)).arg(rest.cm.vn));
+    throw MLException(
+        QStringLiteral("targetmesh: the target layer %1 has %2 vertices, the rest layer %3 has %4")
+            .arg(describeLayer(*target))
+            .arg(target->cm.vn)
+            .arg(describeLayer(rest))
+            .arg(rest.cm.vn));
   return target;
 }
 
@@ -86,10 +92,13 @@ HandleTargets constraintFileTargets(const RichParameterList& parameters, const M
                                     const std::vector<double>& rest_positions) {
   const QString path = parameters.getOpenFileName("constraintfile");
   if (path.trimmed().isEmpty()) throw MLException("constraintfile: no constraint file given");
-  const ConstraintFrame frame = readConstraintFrame(path, parameters.getString("frame"), rest_positions.data(),
-                                                    static_cast<int>(rest_positions.size() / 3));
+  const ConstraintFrame frame =
+      readConstraintFrame(path, parameters.getString("frame"), rest_positions.data(),
+                          static_cast<int>(rest_positions.size() / 3));
   HandleTargets result;
-  result.source = QStringLiteral("frame \"%1\" (index %2) of %3").arg(frame.name).arg(frame.index)
+  result.source = QStringLiteral("frame \"%1\" (index %2) of %3")
+                      .arg(frame.name)
+                      .arg(frame.index)
                       .arg(QFileInfo(path).fileName());
   const std::vector<int> selected = selectedVertices(rest);
   if (selected.empty()) {
@@ -100,14 +109,19 @@ HandleTargets constraintFileTargets(const RichParameterList& parameters, const M
   for (int v : selected) {
     auto it = std::find(frame.handles.begin(), frame.handles.end(), v);
     if (it == frame.handles.end())
-      throw MLException(QStringLiteral("vertex %1 is selected on the rest layer %2 but is no handle in %3: select only "
-                                       "handle vertices of the file, or none to use all of them")
-                            .arg(v).arg(describeLayer(rest)).arg(path));
+      throw MLException(
+          QStringLiteral("vertex %1 is selected on the rest layer %2 but is no handle in %3: select only "
+                         "handle vertices of the file, or none to use all of them")
+              .arg(v)
+              .arg(describeLayer(rest))
+              .arg(path));
     const size_t h = static_cast<size_t>(it - frame.handles.begin());
     result.handles.push_back(v);
-    result.targets.insert(result.targets.end(), frame.targets.begin() + 3 * h, frame.targets.begin() + 3 * h + 3);
+    result.targets.insert(result.targets.end(), frame.targets.begin() + 3 * h,
+                          frame.targets.begin() + 3 * h + 3);
   }
-  result.source += QStringLiteral(", the %1 selected of its %2 handles").arg(selected.size()).arg(frame.handles.size());
+  result.source +=
+      QStringLiteral(", the %1 selected of its %2 handles").arg(selected.size()).arg(frame.handles.size());
   return result;
 }
 
@@ -136,20 +150,21 @@ HandleTargets handleTargets(const RichParameterList& parameters, const MeshModel
       result.handles = selectedHandles(rest);
       const std::vector<double> target_positions = vertexPositions(*target);
       for (int v : result.handles)
-        result.targets.insert(result.targets.end(), target_positions.begin() + 3 * v, target_positions.begin() + 3 * v + 3);
+        result.targets.insert(result.targets.end(), target_positions.begin() + 3 * v,
+                              target_positions.begin() + 3 * v + 3);
       result.source = "target layer " + describeLayer(*target);
       break;
     }
     case TargetSource::kHandleTransform:
       result.handles = selectedHandles(rest);
-      result.targets = transformedTargets(parameters.getMatrix44("handletransform"), result.handles, rest_positions);
+      result.targets =
+          transformedTargets(parameters.getMatrix44("handletransform"), result.handles, rest_positions);
       result.source = QStringLiteral("the handle transform");
       break;
     case TargetSource::kConstraintFile:
       result = constraintFileTargets(parameters, rest, rest_positions);
       break;
-    default:
-      throw MLException("targetsource: unknown value");
+    default: throw MLException("targetsource: unknown value");
   }
   sortByVertex(result);
   return result;

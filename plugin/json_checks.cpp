@@ -43,13 +43,15 @@ QJsonObject expectObject(const QJsonValue& value, const QString& path) {
 
 QJsonArray expectList(const QJsonValue& value, const QString& path, bool non_empty) {
   if (!value.isArray()) throw SchemaViolation(path, "expected a list, got " + describe(value));
-  if (non_empty && value.toArray().isEmpty()) throw SchemaViolation(path, QStringLiteral("expected a non-empty list"));
+  if (non_empty && value.toArray().isEmpty())
+    throw SchemaViolation(path, QStringLiteral("expected a non-empty list"));
   return value.toArray();
 }
 
 QString expectString(const QJsonValue& value, const QString& path) {
   if (!value.isString()) throw SchemaViolation(path, "expected a string, got " + describe(value));
-  if (value.toString().trimmed().isEmpty()) throw SchemaViolation(path, QStringLiteral("expected a non-empty string"));
+  if (value.toString().trimmed().isEmpty())
+    throw SchemaViolation(path, QStringLiteral("expected a non-empty string"));
   return value.toString();
 }
 
@@ -59,7 +61,9 @@ double expectNumber(const QJsonValue& value, const QString& path, double minimum
   if (!std::isfinite(number)) throw SchemaViolation(path, QStringLiteral("expected a finite number"));
   if (number < minimum || (exclusive_minimum && number == minimum))
     throw SchemaViolation(path, QStringLiteral("expected a number %1 %2, got %3")
-                                    .arg(exclusive_minimum ? ">" : ">=").arg(minimum).arg(number));
+                                    .arg(exclusive_minimum ? ">" : ">=")
+                                    .arg(minimum)
+                                    .arg(number));
   return number;
 }
 
@@ -68,7 +72,8 @@ int expectInt(const QJsonValue& value, const QString& path, int minimum, const Q
   if (!std::isfinite(number) || number != std::floor(number) || std::fabs(number) > 2147483647.0)
     throw SchemaViolation(path, "expected " + what + ", got " + describe(value));
   if (number < minimum)
-    throw SchemaViolation(path, QStringLiteral("expected %1 >= %2, got %3").arg(what).arg(minimum).arg(number));
+    throw SchemaViolation(path,
+                          QStringLiteral("expected %1 >= %2, got %3").arg(what).arg(minimum).arg(number));
   return static_cast<int>(number);
 }
 
@@ -80,7 +85,8 @@ void checkMembers(const QJsonObject& object, const QString& path, const QStringL
   allowed.sort();
   for (const QString& name : object.keys()) {
     if (!allowed.contains(name) && !name.startsWith('_'))
-      throw SchemaViolation(childPath(path, name), "unknown member (expected one of: " + allowed.join(", ") + ")");
+      throw SchemaViolation(childPath(path, name),
+                            "unknown member (expected one of: " + allowed.join(", ") + ")");
   }
 }
 

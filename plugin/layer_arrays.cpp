@@ -44,8 +44,9 @@ std::vector<int> selectedVertices(const MeshModel& layer) {
 
 void setVertexPositions(MeshModel& layer, const std::vector<double>& positions) {
   for (size_t i = 0; i < layer.cm.vert.size(); ++i)
-    layer.cm.vert[i].P() = Point3m(static_cast<Scalarm>(positions[3 * i]), static_cast<Scalarm>(positions[3 * i + 1]),
-                                   static_cast<Scalarm>(positions[3 * i + 2]));
+    layer.cm.vert[i].P() =
+        Point3m(static_cast<Scalarm>(positions[3 * i]), static_cast<Scalarm>(positions[3 * i + 1]),
+                static_cast<Scalarm>(positions[3 * i + 2]));
   layer.updateBoxAndNormals();
 }
 
@@ -63,20 +64,33 @@ MeshModel* findLayer(MeshDocument& document, const QString& token) {
 }
 
 // Throws when the example's vertex count or triangles differ from the rest layer's.
-void checkSameTopology(const MeshModel& example, const MeshModel& rest, const std::vector<int>& rest_triangles) {
+void checkSameTopology(const MeshModel& example, const MeshModel& rest,
+                       const std::vector<int>& rest_triangles) {
   if (example.cm.vn != rest.cm.vn || example.cm.fn != rest.cm.fn)
-    throw MLException(QStringLiteral("example layer %1 has %2 vertices and %3 triangles, the rest layer %4 has %5 and %6: "
-                                     "examples must have the rest mesh's vertices and triangles")
-                          .arg(describeLayer(example)).arg(example.cm.vn).arg(example.cm.fn)
-                          .arg(describeLayer(rest)).arg(rest.cm.vn).arg(rest.cm.fn));
+    throw MLException(
+        QStringLiteral("example layer %1 has %2 vertices and %3 triangles, the rest layer %4 has %5 and %6: "
+                       "examples must have the rest mesh's vertices and triangles")
+            .arg(describeLayer(example))
+            .arg(example.cm.vn)
+            .arg(example.cm.fn)
+            .arg(describeLayer(rest))
+            .arg(rest.cm.vn)
+            .arg(rest.cm.fn));
   const std::vector<int> triangles = triangleIndices(example);
   for (size_t t = 0; t < triangles.size(); t += 3) {
     if (std::equal(triangles.begin() + t, triangles.begin() + t + 3, rest_triangles.begin() + t)) continue;
-    throw MLException(QStringLiteral("example layer %1 has other triangles than the rest layer %2: triangle %3 is "
-                                     "(%4, %5, %6) in the example and (%7, %8, %9) in the rest mesh")
-                          .arg(describeLayer(example)).arg(describeLayer(rest)).arg(t / 3)
-                          .arg(triangles[t]).arg(triangles[t + 1]).arg(triangles[t + 2])
-                          .arg(rest_triangles[t]).arg(rest_triangles[t + 1]).arg(rest_triangles[t + 2]));
+    throw MLException(
+        QStringLiteral("example layer %1 has other triangles than the rest layer %2: triangle %3 is "
+                       "(%4, %5, %6) in the example and (%7, %8, %9) in the rest mesh")
+            .arg(describeLayer(example))
+            .arg(describeLayer(rest))
+            .arg(t / 3)
+            .arg(triangles[t])
+            .arg(triangles[t + 1])
+            .arg(triangles[t + 2])
+            .arg(rest_triangles[t])
+            .arg(rest_triangles[t + 1])
+            .arg(rest_triangles[t + 2]));
   }
 }
 
@@ -101,7 +115,8 @@ std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& r
     for (const QString& token : spec.split(',', Qt::SkipEmptyParts)) {
       MeshModel* layer = findLayer(document, token.trimmed());
       if (layer->id() == rest.id())
-        throw MLException("examplelayers: " + describeLayer(*layer) + " is the rest layer (the current layer)");
+        throw MLException("examplelayers: " + describeLayer(*layer) +
+                          " is the rest layer (the current layer)");
       if (std::find(examples.begin(), examples.end(), layer) != examples.end())
         throw MLException("examplelayers: " + describeLayer(*layer) + " is listed twice");
       compactLayer(*layer);
@@ -109,9 +124,12 @@ std::vector<MeshModel*> exampleLayers(MeshDocument& document, const MeshModel& r
     }
   }
   if (examples.empty())
-    throw MLException(QStringLiteral("no example layer: load the example poses as layers with the rest layer %1's "
-                                     "%2 vertices and %3 triangles")
-                          .arg(describeLayer(rest)).arg(rest.cm.vn).arg(rest.cm.fn));
+    throw MLException(
+        QStringLiteral("no example layer: load the example poses as layers with the rest layer %1's "
+                       "%2 vertices and %3 triangles")
+            .arg(describeLayer(rest))
+            .arg(rest.cm.vn)
+            .arg(rest.cm.fn));
   for (const MeshModel* example : examples) checkSameTopology(*example, rest, rest_triangles);
   return examples;
 }

@@ -5,7 +5,8 @@
 
 #include <common/mlexception.h>
 #include <common/parameters/rich_parameters.h>
-#include <common/plugins/interfaces/filter_plugin.h>  // Q_DECLARE_METATYPE(Eigen::VectorXd), as pymeshlab reads it
+// Q_DECLARE_METATYPE(Eigen::VectorXd), the type pymeshlab converts the weights from:
+#include <common/plugins/interfaces/filter_plugin.h>
 
 #include <Eigen/Core>
 #include <QElapsedTimer>
@@ -16,10 +17,10 @@ RichParameterList poseParameters(const MeshDocument& document) {
   RichParameterList parameters;
   addExampleParameters(parameters);
   addHandleTargetParameters(parameters, document);
-  parameters.addParam(RichInt(
-      "iterations", 30, "Maximum iterations",
-      "Gauss-Newton stops after this many iterations, or earlier when the energy no longer decreases "
-      "(relative change below 1e-10)."));
+  parameters.addParam(
+      RichInt("iterations", 30, "Maximum iterations",
+              "Gauss-Newton stops after this many iterations, or earlier when the energy no longer decreases "
+              "(relative change below 1e-10)."));
   parameters.addParam(RichFloat(
       "weightregularization", 0.0f, "Weight regularization",
       "k in the energy |G'x - (M(w) + c)|^2 + k |w|^2: values above 0 pull the example weights towards "
@@ -34,7 +35,8 @@ RichParameterList poseParameters(const MeshDocument& document) {
 
 std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, MeshDocument& document,
                                           vcg::CallBackPos* callback, SolverCache& cache, const Logger& log) {
-  if (document.mm() == nullptr) throw MLException("no current layer: load the rest mesh and make it the current layer");
+  if (document.mm() == nullptr)
+    throw MLException("no current layer: load the rest mesh and make it the current layer");
   MeshModel* target = targetLayer(parameters, document, *document.mm());
   ExampleLayers layers = readExampleLayers(document, parameters, target);
   const HandleTargets handle_targets = handleTargets(parameters, *layers.rest, layers.arrays.rest, target);
@@ -45,34 +47,43 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   options.max_iterations = parameters.getInt("iterations");
   options.weight_regularization = parameters.getFloat("weightregularization");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
-  if (!(options.weight_regularization >= 0.0)) throw MLException("weightregularization: expected a number >= 0");
+  if (!(options.weight_regularization >= 0.0))
+    throw MLException("weightregularization: expected a number >= 0");
 
   QElapsedTimer clock;
   clock.start();
   const auto example_set = cache.exampleSet(std::move(layers.arrays), progressRange(callback, 2, 30));
   const qint64 precompute_ms = clock.restart();
   bool reused = false;
-  const auto solver = cache.solver(example_set, handle_targets.handles, options, progressRange(callback, 30, 60), &reused);
+  const auto solver =
+      cache.solver(example_set, handle_targets.handles, options, progressRange(callback, 30, 60), &reused);
   const qint64 factor_ms = clock.restart();
-  const SolveResult result = solver->solve(handle_targets.targets.data(), nullptr, progressRange(callback, 60, 99));
+  const SolveResult result =
+      solver->solve(handle_targets.targets.data(), nullptr, progressRange(callback, 60, 99));
   const qint64 solve_ms = clock.restart();
 
-  MeshModel& output = writeOutputLayer(document, *layers.rest, "pose", parameters.getBool("inplace"), result.vertices);
-  log(QStringLiteral("MeshIK pose: %1 handles from %2, %3 example layers").arg(handle_targets.handles.size())
-          .arg(handle_targets.source).arg(layers.examples.size()));
+  MeshModel& output =
+      writeOutputLayer(document, *layers.rest, "pose", parameters.getBool("inplace"), result.vertices);
+  log(QStringLiteral("MeshIK pose: %1 handles from %2, %3 example layers")
+          .arg(handle_targets.handles.size())
+          .arg(handle_targets.source)
+          .arg(layers.examples.size()));
   log(QStringLiteral("MeshIK pose: weights %1, %2 iterations%3, residual %4")
-          .arg(formatWeights(result.weights)).arg(result.iterations).arg(result.converged ? " (converged)" : "")
+          .arg(formatWeights(result.weights))
+          .arg(result.iterations)
+          .arg(result.converged ? " (converged)" : "")
           .arg(result.residual, 0, 'g', 6));
   log(QStringLiteral("MeshIK pose: written to %1; precompute %2 ms, factorization %3 (%4 ms), solve %5 ms")
-          .arg(output.label()).arg(precompute_ms).arg(reused ? "reused" : "new").arg(factor_ms).arg(solve_ms));
+          .arg(output.label())
+          .arg(precompute_ms)
+          .arg(reused ? "reused" : "new")
+          .arg(factor_ms)
+          .arg(solve_ms));
 
   Eigen::VectorXd weights = Eigen::Map<const Eigen::VectorXd>(result.weights.data(), result.weights.size());
-  return {{"weights", QVariant::fromValue(weights)},
-          {"iterations", QVariant(result.iterations)},
-          {"residual", QVariant(result.residual)},
-          {"converged", QVariant(result.converged)},
-          {"factorization_reused", QVariant(reused)},
-          {"layer_id", QVariant(output.id())}};
+  return {{"weights", QVariant::fromValue(weights)},  {"iterations", QVariant(result.iterations)},
+          {"residual", QVariant(result.residual)},    {"converged", QVariant(result.converged)},
+          {"factorization_reused", QVariant(reused)}, {"layer_id", QVariant(output.id())}};
 }
 
 }  // namespace meshik::plugin

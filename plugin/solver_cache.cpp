@@ -14,7 +14,8 @@ bool sameOptions(const SolverOptions& a, const SolverOptions& b) {
 
 }  // namespace
 
-std::shared_ptr<const ExampleSet> SolverCache::exampleSet(ExampleSetInputs inputs, const ProgressCallback& progress) {
+std::shared_ptr<const ExampleSet> SolverCache::exampleSet(ExampleSetInputs inputs,
+                                                          const ProgressCallback& progress) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (example_set_ && sameInputs(inputs, example_inputs_)) return example_set_;
   MeshView rest;
@@ -32,7 +33,8 @@ std::shared_ptr<const ExampleSet> SolverCache::exampleSet(ExampleSetInputs input
 }
 
 std::shared_ptr<const Solver> SolverCache::solver(const std::shared_ptr<const ExampleSet>& examples,
-                                                  const std::vector<int>& handles, const SolverOptions& options,
+                                                  const std::vector<int>& handles,
+                                                  const SolverOptions& options,
                                                   const ProgressCallback& progress, bool* reused) {
   std::lock_guard<std::mutex> lock(mutex_);
   *reused = solver_ && examples == example_set_ && handles == handles_ && sameOptions(options, options_);

@@ -27,8 +27,9 @@ class SolverCache {
   // A solver over `examples` for #H `handles` and `options`: the previous one when all three
   // equal the previous call's, else a new one (factored here; throws meshik::InputError).
   // Sets *reused to whether the previous solver was returned.
-  std::shared_ptr<const Solver> solver(const std::shared_ptr<const ExampleSet>& examples, const std::vector<int>& handles,
-                                       const SolverOptions& options, const ProgressCallback& progress, bool* reused);
+  std::shared_ptr<const Solver> solver(const std::shared_ptr<const ExampleSet>& examples,
+                                       const std::vector<int>& handles, const SolverOptions& options,
+                                       const ProgressCallback& progress, bool* reused);
 
  private:
   std::mutex mutex_;  // pymeshlab runs filters with the GIL released: two MeshSets may call at once
