@@ -54,7 +54,12 @@ plugin=$build/plugin/$precision/libfilter_meshik.so
 sample_dir=$root/sample_meshes/$sample
 constraints=$sample_dir/animation.json
 [[ -f $sample_dir/rest.obj && -f $constraints ]] || fail "sample $sample_dir (rest.obj, animation.json) not found"
-frame=${FRAME:-$(python3 -c "import json, sys; f = json.load(open(sys.argv[1]))['frames']; print(f[len(f) // 2].get('name', len(f) // 2))" "$constraints")}
+# The middle frame's name (frames without one are named by their 1-based number, "0001" ...).
+middle_frame='import json, sys
+frames = json.load(open(sys.argv[1]))["frames"]
+middle = len(frames) // 2
+print(frames[middle].get("name", "%04d" % (middle + 1)))'
+frame=${FRAME:-$(python3 -c "$middle_frame" "$constraints")}
 
 # --- A fresh MeshLab user: settings pre-seeded, our plugin in its per-user plugin folder ---------
 rm -rf "$out"
@@ -80,7 +85,9 @@ num_layers=$(grep -c '<MLMesh' "$project")
 
 # --- Xvfb and MeshLab ------------------------------------------------------------------------
 display_number=90
-while [[ -e /tmp/.X11-unix/X$display_number || -e /tmp/.X$display_number-lock ]]; do display_number=$((display_number + 1)); done
+while [[ -e /tmp/.X11-unix/X$display_number || -e /tmp/.X$display_number-lock ]]; do
+  display_number=$((display_number + 1))
+done
 export DISPLAY=:$display_number
 pids=()
 cleanup() { local pid; for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; }
@@ -110,9 +117,14 @@ alive() {
   kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb on $DISPLAY exited (see $out/xvfb.log)"
   kill -0 "$meshlab_pid" 2>/dev/null || fail "MeshLab is no longer running (see $out/meshlab.log)"
 }
-no_dialog() { ! xdotool search --name "$1" >/dev/null 2>&1 || { shot "error_dialog"; fail "MeshLab shows the dialog \"$1\""; }; }
+no_dialog() {
+  ! xdotool search --name "$1" >/dev/null 2>&1 || { shot "error_dialog"; fail "MeshLab shows the dialog \"$1\""; }
+}
 shot() { import -window root "$out/$1.png"; }
-shot_window() { eval "$(xdotool getwindowgeometry --shell "$2")"; import -window root -crop "${WIDTH}x${HEIGHT}+${X}+${Y}" "$out/$1.png"; }
+shot_window() {  # $1 file name, $2 window
+  eval "$(xdotool getwindowgeometry --shell "$2")"
+  import -window root -crop "${WIDTH}x${HEIGHT}+${X}+${Y}" "$out/$1.png"
+}
 
 # A plugin that fails to load is reported only in a modal dialog, shown before the main window.
 deadline=$((SECONDS + 60))
@@ -165,7 +177,8 @@ click_dialog_button() {  # $1 dialog window, $2 Default|Close|Apply
 
 step "opening MeshIK: Blend Examples from the Filters menu"
 open_meshik_filter 1
-blend_dialog=$(wait_window "MeshIK: Blend Examples" 10) || { shot "blend_missing"; fail "the Filters menu has no \"MeshIK: Blend Examples\""; }
+blend_dialog=$(wait_window "MeshIK: Blend Examples" 10) ||
+  { shot "blend_missing"; fail "the Filters menu has no \"MeshIK: Blend Examples\""; }
 sleep 0.5
 shot_window 02_blend_dialog "$blend_dialog"
 click_dialog_button "$blend_dialog" Close
@@ -173,7 +186,8 @@ alive
 
 step "opening MeshIK: Pose from Examples from the Filters menu"
 open_meshik_filter 2 03_filters_menu
-pose_dialog=$(wait_window "MeshIK: Pose from Examples" 10) || { shot "pose_missing"; fail "the Filters menu has no \"MeshIK: Pose from Examples\""; }
+pose_dialog=$(wait_window "MeshIK: Pose from Examples" 10) ||
+  { shot "pose_missing"; fail "the Filters menu has no \"MeshIK: Pose from Examples\""; }
 sleep 0.5
 # From the Default button, Tab walks the parameters from "Example layers" on (6 steps); select
 # "Constraint file" in "Handle targets from", then type the file and the frame.

@@ -85,8 +85,10 @@ def test_named_example_with_other_vertex_count_is_named(grid_set):
     small_vertices, small_faces = grid(3)
     grid_set.add_mesh(pymeshlab.Mesh(small_vertices, small_faces), "small")
     grid_set.set_current_mesh(0)
-    raises(grid_set, POSE, '"small"', "9 vertices", "25", examplelayers="1, small", targetsource="Handle transform")
-    raises(grid_set, POSE, 'no layer with id or name "nothing"', examplelayers="nothing", targetsource="Handle transform")
+    raises(grid_set, POSE, '"small"', "9 vertices", "25", examplelayers="1, small",
+           targetsource="Handle transform")
+    raises(grid_set, POSE, 'no layer with id or name "nothing"', examplelayers="nothing",
+           targetsource="Handle transform")
     raises(grid_set, POSE, "is the rest layer", examplelayers="0, 1", targetsource="Handle transform")
     still_works(grid_set)
 
@@ -139,24 +141,39 @@ def constraint_document(**changes):
     return document
 
 
-@pytest.mark.parametrize("document, fragments", [
+def one_frame(targets):
+    """A constraint document for the grid whose only frame has these targets."""
+    return constraint_document(frames=[{"targets": targets}])
+
+
+SCALING = [[2, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+BAD_CONSTRAINT_FILES = [
     ("{\n  not json", ["not valid JSON: line 2 column"]),
     (constraint_document(format="other"), ['format: expected "meshik-constraints"']),
     (constraint_document(version=2), ["version: version 2 is not supported"]),
-    (constraint_document(handles={"left": [0, 99], "right": [24]}), ["handles.left[1]: vertex 99 is out of range", "25 vertices"]),
-    (constraint_document(handles={"left": [0, 0], "right": [24]}), ["handles.left[1]: vertex 0 is already a handle"]),
-    (constraint_document(handles={"left": [0, 5], "right": {"near": [9, 9, 9], "radius": 0.5}}), ["handles.right: no rest vertex within radius 0.5"]),
-    (constraint_document(frames=[{"targets": {"left": [[0, 0, 0], [0, 1]]}}]), ["frames[0].targets.left[1]: expected 3 numbers, got a list of 2"]),
-    (constraint_document(frames=[{"targets": {"left": [[0, 0, 0]]}}]), ["frames[0].targets.left: expected 2 positions (one per handle vertex), got 1"]),
-    (constraint_document(frames=[{"targets": {"knee": {"translate": [0, 0, 1]}}}]), ['frames[0].targets.knee: no handle group named "knee"']),
-    (constraint_document(frames=[{"targets": {"left": {"rotate": {"axis": [0, 0, 0], "degrees": 5}}}}]), ["frames[0].targets.left.rotate.axis: the rotation axis must have a non-zero"]),
-    (constraint_document(frames=[{"targets": {"left": {"matrix": [[2, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}}}]), ["frames[0].targets.left.matrix: not a rigid motion"]),
-    (constraint_document(frames=[{"targets": {"left": {"scale": 2}}}]), ["frames[0].targets.left.scale: unknown member"]),
+    (constraint_document(handles={"left": [0, 99], "right": [24]}),
+     ["handles.left[1]: vertex 99 is out of range", "25 vertices"]),
+    (constraint_document(handles={"left": [0, 0], "right": [24]}),
+     ["handles.left[1]: vertex 0 is already a handle"]),
+    (constraint_document(handles={"left": [0, 5], "right": {"near": [9, 9, 9], "radius": 0.5}}),
+     ["handles.right: no rest vertex within radius 0.5"]),
+    (one_frame({"left": [[0, 0, 0], [0, 1]]}), ["frames[0].targets.left[1]: expected 3 numbers, got a list of 2"]),
+    (one_frame({"left": [[0, 0, 0]]}),
+     ["frames[0].targets.left: expected 2 positions (one per handle vertex), got 1"]),
+    (one_frame({"knee": {"translate": [0, 0, 1]}}), ['frames[0].targets.knee: no handle group named "knee"']),
+    (one_frame({"left": {"rotate": {"axis": [0, 0, 0], "degrees": 5}}}),
+     ["frames[0].targets.left.rotate.axis: the rotation axis must have a non-zero"]),
+    (one_frame({"left": {"matrix": SCALING}}), ["frames[0].targets.left.matrix: not a rigid motion"]),
+    (one_frame({"left": {"scale": 2}}), ["frames[0].targets.left.scale: unknown member"]),
     (constraint_document(frames=[]), ["frames: expected a non-empty list"]),
-])
+]
+
+
+@pytest.mark.parametrize("document, fragments", BAD_CONSTRAINT_FILES)
 def test_bad_constraint_file_names_the_json_path(grid_set, tmp_path, document, fragments):
     path = write_constraints(tmp_path, document)
-    message = raises(grid_set, POSE, str(path), *fragments, targetsource="Constraint file", constraintfile=str(path))
+    message = raises(grid_set, POSE, str(path), *fragments, targetsource="Constraint file",
+                     constraintfile=str(path))
     assert "Details" in message  # pymeshlab's wrapping of the filter's own message
     still_works(grid_set)
 
@@ -184,4 +201,5 @@ def test_constraint_file_carries_targets_forward(grid_set, tmp_path):
     np.testing.assert_allclose(posed[[0, 5, 24]], [[0, 0, 0.1], [0, 1, 0.1], [4, 4, 0.3]], atol=1e-6)
     select_vertices(grid_set, [0, 5])
     left = grid_set.apply_filter(POSE, targetsource="Constraint file", constraintfile=str(path), frame="up")
-    np.testing.assert_allclose(grid_set.mesh(left["layer_id"]).vertex_matrix()[[0, 5]], [[0, 0, 0.1], [0, 1, 0.1]], atol=1e-6)
+    posed = grid_set.mesh(left["layer_id"]).vertex_matrix()
+    np.testing.assert_allclose(posed[[0, 5]], [[0, 0, 0.1], [0, 1, 0.1]], atol=1e-6)
