@@ -58,7 +58,7 @@ std::map<std::string, QVariant> applyBlend(const RichParameterList& parameters, 
                                            const Logger& log) {
   ExampleLayers layers = readExampleLayers(document, parameters, nullptr);
   const std::vector<double> weights = parseWeights(parameters.getString("weights"), layers.examples.size());
-  const auto example_set = cache.exampleSet(std::move(layers.arrays), progressRange(callback, 0, 90));
+  const auto example_set = exampleSetOf(cache, layers, progressRange(callback, 0, 90));
   const std::vector<double> positions = example_set->blend(weights.data(), featureSpace(parameters));
   MeshModel& output = writeOutputLayer(document, *layers.rest, "blend", false, positions);
   log(QStringLiteral("MeshIK blend: weights %1 of %2 example layers written to %3")

@@ -5,6 +5,7 @@
 #include <common/mlexception.h>
 #include <common/parameters/rich_parameters.h>
 
+#include <QRegularExpression>
 #include <QStringList>
 
 namespace meshik::plugin {
@@ -43,6 +44,24 @@ ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList&
   for (const MeshModel* example : layers.examples)
     layers.arrays.examples.push_back(vertexPositions(*example));
   return layers;
+}
+
+std::shared_ptr<const ExampleSet> exampleSetOf(SolverCache& cache, ExampleLayers& layers,
+                                               const ProgressCallback& progress) {
+  try {
+    return cache.exampleSet(std::move(layers.arrays), progress);
+  } catch (const InputError& error) {
+    // The core numbers the examples from 0 in the order given: name the layer it means.
+    static const QRegularExpression example_number(QStringLiteral("^example (\\d+)\\b"));
+    const QString message = QString::fromUtf8(error.what());
+    const QRegularExpressionMatch match = example_number.match(message);
+    const size_t number = match.hasMatch() ? match.captured(1).toULong() : layers.examples.size();
+    if (number < layers.examples.size())
+      throw MLException(QStringLiteral("%1 (example %2 is layer %3)")
+                            .arg(message, match.captured(1), describeLayer(*layers.examples[number])));
+    throw MLException(
+        QStringLiteral("%1 (the rest mesh is layer %2)").arg(message, describeLayer(*layers.rest)));
+  }
 }
 
 MeshModel& writeOutputLayer(MeshDocument& document, MeshModel& rest, const QString& what, bool in_place,

@@ -36,6 +36,12 @@ struct ExampleLayers {
 ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList& parameters,
                                 const MeshModel* excluded);
 
+// The example set of `layers` (moving their arrays into the cache, which may reuse its previous
+// one). Bad input (meshik::InputError: a non-finite coordinate, a degenerate rest triangle, ...)
+// comes back as an MLException that also names the layer concerned.
+std::shared_ptr<const ExampleSet> exampleSetOf(SolverCache& cache, ExampleLayers& layers,
+                                               const ProgressCallback& progress);
+
 // The layer a filter writes its #V by 3 `positions` to: the rest layer itself when `in_place`,
 // else a new copy of it (selection included) labelled "MeshIK <what> of <rest label>", which does
 // not become the current layer (so the filter can run again on the same rest layer).

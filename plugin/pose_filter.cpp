@@ -52,7 +52,7 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
 
   QElapsedTimer clock;
   clock.start();
-  const auto example_set = cache.exampleSet(std::move(layers.arrays), progressRange(callback, 2, 30));
+  const auto example_set = exampleSetOf(cache, layers, progressRange(callback, 2, 30));
   const qint64 precompute_ms = clock.restart();
   bool reused = false;
   const auto solver =

@@ -99,8 +99,18 @@ def test_degenerate_rest_triangle():
     collapsed[6] = collapsed[0]  # triangles 0 (0, 1, 6) and 1 (0, 6, 5) lose their area
     ms = mesh_set(collapsed, faces, [bent(vertices, 0.1)])
     select_vertices(ms, [0, 24])
-    message = raises(ms, POSE, "rest", targetsource="Handle transform")
+    message = raises(ms, POSE, "zero area", 'the rest mesh is layer "rest" (layer 0)', targetsource="Handle transform")
     assert "triangle 0 " in message or "triangle 1 " in message, message
+
+
+def test_non_finite_example_names_its_layer():
+    vertices, faces = grid()
+    broken = bent(vertices, 0.2)
+    broken[3, 1] = np.nan
+    ms = mesh_set(vertices, faces, [bent(vertices, 0.1), broken], labels=["fine", "broken"])
+    select_vertices(ms, [0, 24])
+    raises(ms, POSE, "vertex 3", "non-finite", 'example 1 is layer "broken" (layer 2)', targetsource="Handle transform")
+    raises(ms, BLEND, 'example 1 is layer "broken" (layer 2)', weights="0, 1")
 
 
 def test_target_layer_with_other_vertex_count(grid_set):
