@@ -11,6 +11,7 @@
 #include "sparse/numeric.h"
 #include "sparse/ordering.h"
 #include "sparse/permuted_matrix.h"
+#include "sparse/simd.h"
 #include "sparse/supernodes.h"
 #include "sparse/symbolic.h"
 #include "sparse/triangular_solve.h"
@@ -83,15 +84,27 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   const Impl& s = *impl_;
   if (!s.factorized) throw std::logic_error("SparseCholesky::solve: no successful factorize()");
   if (nrhs < 0) throw std::invalid_argument("SparseCholesky::solve: nrhs must be >= 0");
+  if (nrhs == 0) return;
   const int n = size();
   const size_t width = static_cast<size_t>(nrhs);
-  // Reused per thread: a fresh buffer would cost page faults on every solve.
+  // Permuted copy of b with rows padded to whole vectors. Reused per thread: a fresh buffer
+  // would cost page faults on every solve.
+  const int stride = round_up_to_lanes(nrhs);
   thread_local std::vector<double> x;
-  x.resize(static_cast<size_t>(n) * width);
-  for (int k = 0; k < n; ++k) std::copy_n(b + s.perm[k] * width, width, x.data() + k * width);
-  forward_solve(s.symbolic, s.values, x.data(), nrhs);
-  backward_solve(s.symbolic, s.values, x.data(), nrhs);
-  for (int k = 0; k < n; ++k) std::copy_n(x.data() + k * width, width, b + s.perm[k] * width);
+  x.resize(static_cast<size_t>(n) * stride);
+  for (int k = 0; k < n; ++k) {
+    const double* from = b + s.perm[k] * width;
+    double* to = x.data() + static_cast<size_t>(k) * stride;
+    for (int c = 0; c < nrhs; ++c) to[c] = from[c];
+    for (int c = nrhs; c < stride; ++c) to[c] = 0.0;
+  }
+  forward_solve(s.symbolic, s.values, x.data(), stride);
+  backward_solve(s.symbolic, s.values, x.data(), stride);
+  for (int k = 0; k < n; ++k) {
+    const double* from = x.data() + static_cast<size_t>(k) * stride;
+    double* to = b + s.perm[k] * width;
+    for (int c = 0; c < nrhs; ++c) to[c] = from[c];
+  }
 }
 
 int SparseCholesky::size() const { return static_cast<int>(impl_->perm.size()); }

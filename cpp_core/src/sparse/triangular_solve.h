@@ -7,10 +7,11 @@
 
 namespace meshik::sparse {
 
-// x: n by nrhs row-major, in the factor's (permuted) order. Overwrites x with L^{-1} x.
-void forward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs);
+// x: n rows of `stride` doubles (stride a multiple of kLanes, see simd.h), in the factor's
+// (permuted) order; every column of x is a right-hand side. Overwrites x with L^{-1} x.
+void forward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int stride);
 
-// x: n by nrhs row-major, in the factor's order. Overwrites x with L^{-T} x.
-void backward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs);
+// As forward_solve, overwrites x with L^{-T} x.
+void backward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int stride);
 
 }  // namespace meshik::sparse
