@@ -13,6 +13,7 @@
 #include "sparse/permuted_matrix.h"
 #include "sparse/simd.h"
 #include "sparse/supernodes.h"
+#include "sparse/symmetric_graph.h"
 #include "sparse/symbolic.h"
 #include "sparse/triangular_solve.h"
 
@@ -24,7 +25,7 @@ struct SparseCholesky::Impl {
   // The analysed pattern, to check that factorize() gets the same one.
   std::vector<int> input_col_start, input_row_index;
   std::vector<int> perm;   // perm[k]: original index of pivot k (fill-reducing, then postordered)
-  PermutedMatrix lower;    // lower triangle of P A P^T, with sources into A's values
+  PermutedLower lower;     // lower triangle of P A P^T, with sources into A's values
   SymbolicFactor symbolic;
   std::vector<double> values;  // the supernodes' dense blocks
   bool factorized = false;
@@ -40,23 +41,25 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   Impl fresh;
   fresh.input_col_start = a.col_start;
   fresh.input_row_index = a.row_index;
-  // Minimum degree, then a postorder of its elimination tree so that supernodes are runs of
-  // consecutive columns.
-  const std::vector<int> amd = minimum_degree_ordering(lower_pattern(a));
-  const Pattern upper = permute_symmetric(a, invert_permutation(amd), Triangle::kUpper).pattern;
-  const std::vector<int> amd_parent = elimination_tree(upper);
-  const std::vector<int> post = tree_postorder(amd_parent);
-  const std::vector<int> amd_counts = column_counts(transpose(upper), amd_parent, post);
   const int n = a.cols;
+  const Pattern graph = adjacency_graph(a);
+  // Fill-reducing order, then a postorder of its elimination tree so that supernodes are runs
+  // of consecutive columns.
+  const std::vector<int> order = fill_reducing_ordering(graph);
+  const Pattern ordered = permuted_graph(graph, order, invert_permutation(order));
+  const std::vector<int> order_parent = elimination_tree(ordered);
+  const std::vector<int> post = tree_postorder(order_parent);
+  const std::vector<int> order_counts = column_counts(ordered, order_parent, post);
   fresh.perm.resize(n);
   std::vector<int> counts(n);
   for (int k = 0; k < n; ++k) {
-    fresh.perm[k] = amd[post[k]];
-    counts[k] = amd_counts[post[k]];
+    fresh.perm[k] = order[post[k]];
+    counts[k] = order_counts[post[k]];
   }
-  const std::vector<int> parent = relabel_tree(amd_parent, post);
-  fresh.lower = permute_symmetric(a, invert_permutation(fresh.perm), Triangle::kLower);
-  fresh.symbolic = symbolic_factor(fresh.lower.pattern, find_supernodes(parent, counts), counts);
+  const std::vector<int> parent = relabel_tree(order_parent, post);
+  const std::vector<int> inverse = invert_permutation(fresh.perm);
+  fresh.symbolic = symbolic_factor(permuted_graph(graph, fresh.perm, inverse), parent, counts, find_supernodes(parent, counts));
+  fresh.lower = permute_lower(a, inverse);
   *impl_ = std::move(fresh);
 }
 

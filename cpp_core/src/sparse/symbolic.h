@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "sparse/pattern.h"
+#include "sparse/symmetric_graph.h"
 #include "sparse/supernodes.h"
 
 namespace meshik::sparse {
@@ -29,11 +29,11 @@ struct SymbolicFactor {
   long long structural_nonzeros = 0;   // nnz(L) without explicit zeros, diagonal included
 };
 
-// lower: the lower triangle of the postordered, permuted matrix (column j: rows i >= j)
-// partition: its supernodes; counts: its column counts (n entries)
+// graph: adjacency of the postordered, permuted matrix; parent: its elimination tree;
+// counts: its column counts (n entries each); partition: its supernodes.
 // Returns the symbolic factor.
-SymbolicFactor symbolic_factor(const Pattern& lower, const SupernodePartition& partition,
-                               const std::vector<int>& counts);
+SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
+                               const std::vector<int>& counts, const SupernodePartition& partition);
 
 // Size in doubles of the packed lower triangle of an m by m update matrix.
 inline size_t packed_size(int m) { return static_cast<size_t>(m) * (m + 1) / 2; }
