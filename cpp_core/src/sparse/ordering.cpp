@@ -17,21 +17,6 @@ bool adjacent(const Pattern& graph, int u, int v) {
   return std::binary_search(begin, end, v);
 }
 
-// The subgraph induced by `kept` (node kept[t] becomes t); local[v] is v's new index or -1.
-Pattern induced_subgraph(const Pattern& graph, const std::vector<int>& kept, const std::vector<int>& local) {
-  Pattern sub;
-  sub.n = static_cast<int>(kept.size());
-  sub.col_start.reserve(sub.n + 1);
-  sub.col_start.push_back(0);
-  sub.row_index.reserve(graph.row_index.size());
-  for (int v : kept) {
-    for (int p = graph.col_start[v]; p < graph.col_start[v + 1]; ++p)
-      if (local[graph.row_index[p]] >= 0) sub.row_index.push_back(local[graph.row_index[p]]);
-    sub.col_start.push_back(static_cast<int>(sub.row_index.size()));
-  }
-  return sub;
-}
-
 }  // namespace
 
 std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree) {
@@ -49,31 +34,16 @@ std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree) {
 
 std::vector<int> minimum_degree_ordering(const Pattern& graph) {
   std::vector<int> perm(graph.n);
-  if (graph.n == 0) return perm;
+  if (graph.row_index.empty()) {  // no edges: any order is free of fill (AMD rejects it)
+    for (int v = 0; v < graph.n; ++v) perm[v] = v;
+    return perm;
+  }
   double control[AMD_CONTROL];
   amd_defaults(control);
   const int status = amd_order(graph.n, graph.col_start.data(), graph.row_index.data(), perm.data(), control,
                                nullptr);
   if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
     throw std::runtime_error("SparseCholesky: AMD ordering failed with status " + std::to_string(status));
-  return perm;
-}
-
-std::vector<int> fill_reducing_ordering(const Pattern& graph) {
-  // Degree 4 covers a 4th-vertex unknown (3 neighbours) with room for one more; larger
-  // cliques are rare in meshes and cost more to test.
-  constexpr int kMaxSimplicialDegree = 4;
-  std::vector<int> perm = simplicial_nodes(graph, kMaxSimplicialDegree);
-  if (perm.empty()) return minimum_degree_ordering(graph);
-  std::vector<char> simplicial(graph.n, 0);
-  for (int v : perm) simplicial[v] = 1;
-  std::vector<int> local(graph.n, -1), kept;
-  for (int v = 0; v < graph.n; ++v)
-    if (!simplicial[v]) {
-      local[v] = static_cast<int>(kept.size());
-      kept.push_back(v);
-    }
-  for (int t : minimum_degree_ordering(induced_subgraph(graph, kept, local))) perm.push_back(kept[t]);
   return perm;
 }
 

@@ -1,20 +1,12 @@
-// SparseCholesky: ties the ordering, the symbolic analysis, the numeric factorization and the
-// solves together.
+// SparseCholesky: ties the analysis, the numeric factorization and the solves together.
 #include "meshik/sparse_cholesky.h"
 
-#include <algorithm>
 #include <string>
 
-#include "sparse/column_counts.h"
-#include "sparse/elimination_tree.h"
+#include "sparse/analysis.h"
 #include "sparse/input_check.h"
 #include "sparse/numeric.h"
-#include "sparse/ordering.h"
-#include "sparse/permuted_matrix.h"
 #include "sparse/simd.h"
-#include "sparse/supernodes.h"
-#include "sparse/symmetric_graph.h"
-#include "sparse/symbolic.h"
 #include "sparse/triangular_solve.h"
 
 namespace meshik {
@@ -24,10 +16,8 @@ using namespace sparse;
 struct SparseCholesky::Impl {
   // The analysed pattern, to check that factorize() gets the same one.
   std::vector<int> input_col_start, input_row_index;
-  std::vector<int> perm;   // perm[k]: original index of pivot k (fill-reducing, then postordered)
-  PermutedLower lower;     // lower triangle of P A P^T, with sources into A's values
-  SymbolicFactor symbolic;
-  std::vector<double> values;  // the supernodes' dense blocks
+  Analysis analysis;
+  FactorValues factor;
   bool factorized = false;
 };
 
@@ -41,25 +31,7 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   Impl fresh;
   fresh.input_col_start = a.col_start;
   fresh.input_row_index = a.row_index;
-  const int n = a.cols;
-  const Pattern graph = adjacency_graph(a);
-  // Fill-reducing order, then a postorder of its elimination tree so that supernodes are runs
-  // of consecutive columns.
-  const std::vector<int> order = fill_reducing_ordering(graph);
-  const Pattern ordered = permuted_graph(graph, order, invert_permutation(order));
-  const std::vector<int> order_parent = elimination_tree(ordered);
-  const std::vector<int> post = tree_postorder(order_parent);
-  const std::vector<int> order_counts = column_counts(ordered, order_parent, post);
-  fresh.perm.resize(n);
-  std::vector<int> counts(n);
-  for (int k = 0; k < n; ++k) {
-    fresh.perm[k] = order[post[k]];
-    counts[k] = order_counts[post[k]];
-  }
-  const std::vector<int> parent = relabel_tree(order_parent, post);
-  const std::vector<int> inverse = invert_permutation(fresh.perm);
-  fresh.symbolic = symbolic_factor(permuted_graph(graph, fresh.perm, inverse), parent, counts, find_supernodes(parent, counts));
-  fresh.lower = permute_lower(a, inverse);
+  fresh.analysis = analyze_pattern(a);
   *impl_ = std::move(fresh);
 }
 
@@ -69,12 +41,10 @@ void SparseCholesky::factorize(const CscMatrix& a) {
     throw std::invalid_argument(
         "SparseCholesky::factorize: the matrix pattern differs from the one given to analyze()");
   if (a.values.size() != a.row_index.size())
-    throw std::invalid_argument("SparseCholesky::factorize: values has " +
-                                std::to_string(a.values.size()) + " entries, expected " +
-                                std::to_string(a.row_index.size()));
+    throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
+                                " entries, expected " + std::to_string(a.row_index.size()));
   s.factorized = false;
-  const LowerValues values{&s.lower.pattern, s.lower.source.data(), a.values.data()};
-  factorize_supernodal(s.symbolic, values, s.perm, s.values);
+  factorize_numeric(s.analysis, a.values, s.factor);
   s.factorized = true;
 }
 
@@ -89,6 +59,7 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   if (nrhs < 0) throw std::invalid_argument("SparseCholesky::solve: nrhs must be >= 0");
   if (nrhs == 0) return;
   const int n = size();
+  const std::vector<int>& perm = s.analysis.perm;
   const size_t width = static_cast<size_t>(nrhs);
   // Permuted copy of b with rows padded to whole vectors. Reused per thread: a fresh buffer
   // would cost page faults on every solve.
@@ -96,22 +67,22 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   thread_local std::vector<double> x;
   x.resize(static_cast<size_t>(n) * stride);
   for (int k = 0; k < n; ++k) {
-    const double* from = b + s.perm[k] * width;
+    const double* from = b + perm[k] * width;
     double* to = x.data() + static_cast<size_t>(k) * stride;
     for (int c = 0; c < nrhs; ++c) to[c] = from[c];
     for (int c = nrhs; c < stride; ++c) to[c] = 0.0;
   }
-  forward_solve(s.symbolic, s.values, x.data(), stride);
-  backward_solve(s.symbolic, s.values, x.data(), stride);
+  forward_solve(s.analysis, s.factor, x.data(), stride);
+  backward_solve(s.analysis, s.factor, x.data(), stride);
   for (int k = 0; k < n; ++k) {
     const double* from = x.data() + static_cast<size_t>(k) * stride;
-    double* to = b + s.perm[k] * width;
+    double* to = b + perm[k] * width;
     for (int c = 0; c < nrhs; ++c) to[c] = from[c];
   }
 }
 
-int SparseCholesky::size() const { return static_cast<int>(impl_->perm.size()); }
+int SparseCholesky::size() const { return static_cast<int>(impl_->analysis.perm.size()); }
 
-long long SparseCholesky::factor_nonzeros() const { return impl_->symbolic.structural_nonzeros; }
+long long SparseCholesky::factor_nonzeros() const { return impl_->analysis.factor_nonzeros; }
 
 }  // namespace meshik

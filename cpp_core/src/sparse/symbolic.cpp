@@ -7,19 +7,25 @@ namespace meshik::sparse {
 
 namespace {
 
+// Returns the supernode owning each column (n entries).
+std::vector<int> supernode_of_columns(const SymbolicFactor& f) {
+  std::vector<int> owner(f.n);
+  for (int s = 0; s + 1 < static_cast<int>(f.first_column.size()); ++s)
+    std::fill(owner.begin() + f.first_column[s], owner.begin() + f.first_column[s + 1], s);
+  return owner;
+}
+
 // Supernodal tree: the parent of s holds the elimination-tree parent of s's last column (the
 // columns of a supernode form a path in the tree, so that is its first row below).
-void supernodal_tree(const std::vector<int>& parent, SymbolicFactor& f) {
+// supernode_of: the owner of each column.
+void supernodal_tree(const std::vector<int>& parent, const std::vector<int>& supernode_of, SymbolicFactor& f) {
   const int ns = static_cast<int>(f.first_column.size()) - 1;
-  f.supernode_of.resize(f.n);
-  for (int s = 0; s < ns; ++s)
-    std::fill(f.supernode_of.begin() + f.first_column[s], f.supernode_of.begin() + f.first_column[s + 1], s);
   f.parent.assign(ns, -1);
   f.child_start.assign(ns + 1, 0);
   for (int s = 0; s < ns; ++s) {
     const int above = parent[f.first_column[s + 1] - 1];
     if (above == -1) continue;
-    f.parent[s] = f.supernode_of[above];
+    f.parent[s] = supernode_of[above];
     ++f.child_start[f.parent[s] + 1];
   }
   for (int s = 0; s < ns; ++s) f.child_start[s + 1] += f.child_start[s];
@@ -33,7 +39,8 @@ void supernodal_tree(const std::vector<int>& parent, SymbolicFactor& f) {
 // supernode s iff L(i, j) != 0 for a column j of s, i.e. s is on the path of the supernodal
 // tree from the supernode of some j < i with A(i, j) != 0 up to (not including) i's own
 // supernode. Rows are taken in increasing order, so every list comes out sorted.
-void row_structures(const Pattern& graph, const SupernodePartition& partition, SymbolicFactor& f) {
+void row_structures(const Pattern& graph, const SupernodePartition& partition,
+                    const std::vector<int>& supernode_of, SymbolicFactor& f) {
   const int ns = static_cast<int>(partition.row_count.size());
   f.row_start.assign(ns + 1, 0);
   for (int s = 0; s < ns; ++s) f.row_start[s + 1] = f.row_start[s] + partition.row_count[s];
@@ -46,11 +53,11 @@ void row_structures(const Pattern& graph, const SupernodePartition& partition, S
   }
   std::vector<int> mark(ns, -1);
   for (int i = 0; i < f.n; ++i) {
-    const int own = f.supernode_of[i];
+    const int own = supernode_of[i];
     for (int p = graph.col_start[i]; p < graph.col_start[i + 1]; ++p) {
       const int j = graph.row_index[p];
       if (j >= i) continue;
-      for (int s = f.supernode_of[j]; s != own && mark[s] != i; s = f.parent[s]) {
+      for (int s = supernode_of[j]; s != own && mark[s] != i; s = f.parent[s]) {
         mark[s] = i;
         f.rows[next[s]++] = i;
       }
@@ -82,12 +89,18 @@ size_t peak_stack(const SymbolicFactor& f) {
 }  // namespace
 
 SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
-                               const std::vector<int>& counts, const SupernodePartition& partition) {
+                               const std::vector<int>& counts, const SupernodePartition& partition,
+                               int column_offset) {
   SymbolicFactor f;
   f.n = graph.n;
   f.first_column = partition.first_column;
-  supernodal_tree(parent, f);
-  row_structures(graph, partition, f);
+  const std::vector<int> supernode_of = supernode_of_columns(f);
+  supernodal_tree(parent, supernode_of, f);
+  row_structures(graph, partition, supernode_of, f);
+  // Global numbering after the prefix.
+  f.n += column_offset;
+  for (int& c : f.first_column) c += column_offset;
+  for (int& i : f.rows) i += column_offset;
   const int ns = f.num_supernodes();
   f.value_start.assign(ns + 1, 0);
   for (int s = 0; s < ns; ++s)

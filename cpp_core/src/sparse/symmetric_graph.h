@@ -17,4 +17,9 @@ Pattern adjacency_graph(const CscMatrix& a);
 // perm[k] renamed by `inverse` (in no particular order).
 Pattern permuted_graph(const Pattern& graph, const std::vector<int>& perm, const std::vector<int>& inverse);
 
+// graph: an adjacency graph; kept: the nodes to keep, increasing; local[v]: v's index in
+// `kept`, or -1. Returns the subgraph induced by `kept` (node kept[t] becomes t; lists stay
+// sorted).
+Pattern induced_subgraph(const Pattern& graph, const std::vector<int>& kept, const std::vector<int>& local);
+
 }  // namespace meshik::sparse

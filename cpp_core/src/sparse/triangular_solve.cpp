@@ -129,9 +129,49 @@ struct FromRowsBelow {
   };
 };
 
-// Forward pass over all supernodes for one chunk.
+// Forward pass over the simplicial prefix for one chunk: x_u /= L(u, u), then
+// x_r -= L(r, u) x_u for its rows r.
 template <int V>
-void forward_chunk(const SymbolicFactor& f, const double* values, double* x, long stride) {
+void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
+  for (int u = 0; u < p.size; ++u) {
+    double* xu = x + u * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xu);
+    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xu);
+    for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t) {
+      double* xr = x + p.rows[t] * stride;
+      Rows<V, 1> row;
+      row.load_from(&xr);
+      row.subtract_scaled(&factor.prefix_below[t], xu);
+      row.store_to(&xr);
+    }
+  }
+}
+
+// Backward pass over the simplicial prefix (last column first) for one chunk:
+// x_u = (x_u - sum_r L(r, u) x_r) / L(u, u).
+template <int V>
+void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
+  for (int u = p.size - 1; u >= 0; --u) {
+    double* xu = x + u * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xu);
+    for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t)
+      acc.subtract_scaled(&factor.prefix_below[t], x + p.rows[t] * stride);
+    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xu);
+  }
+}
+
+// Forward pass (prefix, then supernodes) for one chunk.
+template <int V>
+void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+  prefix_forward<V>(analysis.prefix, factor, x, stride);
+  const SymbolicFactor& f = analysis.symbolic;
+  const double* values = factor.supernodal.data();
   for (int s = 0; s < f.num_supernodes(); ++s) {
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
@@ -145,9 +185,11 @@ void forward_chunk(const SymbolicFactor& f, const double* values, double* x, lon
   }
 }
 
-// Backward pass over all supernodes (last to first) for one chunk.
+// Backward pass (supernodes from the last, then the prefix) for one chunk.
 template <int V>
-void backward_chunk(const SymbolicFactor& f, const double* values, double* x, long stride) {
+void backward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+  const SymbolicFactor& f = analysis.symbolic;
+  const double* values = factor.supernodal.data();
   for (int s = f.num_supernodes() - 1; s >= 0; --s) {
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
@@ -159,6 +201,7 @@ void backward_chunk(const SymbolicFactor& f, const double* values, double* x, lo
     with_group_size<FromRowsBelow<V>::template Group>(k - j, block, k, r, j, rows, xs, x, stride);
     diagonal_backward<V>(block, k, r, xs, stride);
   }
+  prefix_backward<V>(analysis.prefix, factor, x, stride);
 }
 
 // Most vectors per chunk: 16 right-hand sides.
@@ -167,38 +210,38 @@ constexpr int kMaxVectors = 16 / kLanes;
 template <int V>
 struct Forward {
   // Runs forward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const SymbolicFactor& f, const double* values, double* x, long stride) {
-    if (vectors == V) forward_chunk<V>(f, values, x, stride);
-    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, f, values, x, stride);
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
+    if (vectors == V) forward_chunk<V>(a, factor, x, stride);
+    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, x, stride);
   }
 };
 
 template <int V>
 struct Backward {
   // Runs backward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const SymbolicFactor& f, const double* values, double* x, long stride) {
-    if (vectors == V) backward_chunk<V>(f, values, x, stride);
-    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, f, values, x, stride);
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
+    if (vectors == V) backward_chunk<V>(a, factor, x, stride);
+    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, x, stride);
   }
 };
 
 // Runs Pass on chunks of at most kMaxVectors vectors covering the stride.
 template <template <int> class Pass>
-void by_chunks(const SymbolicFactor& f, const double* values, double* x, int stride) {
+void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int stride) {
   for (int c0 = 0; c0 < stride; c0 += kMaxVectors * kLanes) {
     const int vectors = (stride - c0) / kLanes < kMaxVectors ? (stride - c0) / kLanes : kMaxVectors;
-    Pass<kMaxVectors>::dispatch(vectors, f, values, x + c0, stride);
+    Pass<kMaxVectors>::dispatch(vectors, a, factor, x + c0, stride);
   }
 }
 
 }  // namespace
 
-void forward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int stride) {
-  by_chunks<Forward>(f, values.data(), x, stride);
+void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
+  by_chunks<Forward>(analysis, factor, x, stride);
 }
 
-void backward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int stride) {
-  by_chunks<Backward>(f, values.data(), x, stride);
+void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
+  by_chunks<Backward>(analysis, factor, x, stride);
 }
 
 }  // namespace meshik::sparse
