@@ -78,7 +78,7 @@ struct BatchRotation {
 };
 
 // Fills r for the batch whose features (#E blocks of 9 rows) start at feature; weights w (#E).
-inline void blend_rotation(const double* feature, const double* w, int k, BatchRotation& r) {
+MESHIK_LANE_INLINE void blend_rotation(const double* feature, const double* w, int k, BatchRotation& r) {
   for (int d = 0; d < 3; ++d)
     for (int l = 0; l < L; ++l) r.phi[d][l] = 0.0;
   for (int i = 0; i < k; ++i)
@@ -103,7 +103,7 @@ inline void blend_rotation(const double* feature, const double* w, int k, BatchR
 }
 
 // psi = J_l(phi) u per lane, u: 3 rows of lanes.
-inline void left_jacobian_times(const BatchRotation& r, const double* u, double psi[3][L]) {
+MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation& r, const double* u, double psi[3][L]) {
   for (int l = 0; l < L; ++l) {
     const double x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l];
     const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
@@ -116,7 +116,7 @@ inline void left_jacobian_times(const BatchRotation& r, const double* u, double 
 
 // target = psi x m (column by column) + R d for 3 by 2 lane-minor blocks m, d (d may be null:
 // no R d term).
-inline void cross_plus_rotated(const BatchRotation& r, const double psi[3][L], const double* m,
+MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation& r, const double psi[3][L], const double* m,
                                const double* d, double* target) {
   for (int row = 0; row < 3; ++row) {
     const int p = (row + 1) % 3, q = (row + 2) % 3;
@@ -135,7 +135,7 @@ inline void cross_plus_rotated(const BatchRotation& r, const double psi[3][L], c
 
 // x = sum over the two columns of m_col x res_col, per lane (3 rows of lanes); m, res: 3 by 2
 // lane-minor blocks. Then <res, [v]_x m> = v . x.
-inline void column_cross_sum(const double* m, const double* res, double x[3][L]) {
+MESHIK_LANE_INLINE void column_cross_sum(const double* m, const double* res, double x[3][L]) {
   for (int row = 0; row < 3; ++row) {
     const int p = (row + 1) % 3, q = (row + 2) % 3;
     for (int l = 0; l < L; ++l) {
@@ -148,7 +148,7 @@ inline void column_cross_sum(const double* m, const double* res, double x[3][L])
   }
 }
 
-inline double dot_lane(const double u[3][L], const double v[3][L], int l) {
+MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], int l) {
   return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
 }
 

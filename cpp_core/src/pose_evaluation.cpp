@@ -1,4 +1,7 @@
 // The reduced energy, its optimal vertices and its Gauss-Newton system at given weights.
+// GCC 12 reports a false -Wmaybe-uninitialized inside Eigen's AVX-512 reductions (built with
+// -march=native); the values it names are always written first.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "pose_evaluation.h"
 
 #include <algorithm>
