@@ -64,10 +64,99 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
   return features;
 }
 
+namespace {
+
+constexpr int L = kLanes;
+
+// The rotation of a nonlinear blend for one batch: phi = sum_i w_i phi_i, its Rodrigues
+// coefficients and R = exp(phi) (row-major), per lane.
+struct BatchRotation {
+  double phi[3][L];
+  double theta_squared[L];
+  double a[L], b[L], c[L];
+  double rot[9][L];
+};
+
+// Fills r for the batch whose features (#E blocks of 9 rows) start at feature; weights w (#E).
+MESHIK_LANE_INLINE void blend_rotation(const double* feature, const double* w, int k, BatchRotation& r) {
+  for (int d = 0; d < 3; ++d)
+    for (int l = 0; l < L; ++l) r.phi[d][l] = 0.0;
+  for (int i = 0; i < k; ++i)
+    for (int d = 0; d < 3; ++d)
+      for (int l = 0; l < L; ++l) r.phi[d][l] += w[i] * feature[(i * 9 + d) * L + l];
+  for (int l = 0; l < L; ++l)
+    r.theta_squared[l] = r.phi[0][l] * r.phi[0][l] + r.phi[1][l] * r.phi[1][l] + r.phi[2][l] * r.phi[2][l];
+  rodrigues_lanes<L>(r.theta_squared, r.a, r.b, r.c);
+  // R = I + a [phi]_x + b [phi]_x^2.
+  for (int l = 0; l < L; ++l) {
+    const double x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l], a = r.a[l], b = r.b[l];
+    r.rot[0][l] = 1.0 - b * (y * y + z * z);
+    r.rot[1][l] = b * x * y - a * z;
+    r.rot[2][l] = b * x * z + a * y;
+    r.rot[3][l] = b * x * y + a * z;
+    r.rot[4][l] = 1.0 - b * (x * x + z * z);
+    r.rot[5][l] = b * y * z - a * x;
+    r.rot[6][l] = b * x * z - a * y;
+    r.rot[7][l] = b * y * z + a * x;
+    r.rot[8][l] = 1.0 - b * (x * x + y * y);
+  }
+}
+
+// psi = J_l(phi) u per lane, u: 3 rows of lanes.
+MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation& r, const double* u, double psi[3][L]) {
+  for (int l = 0; l < L; ++l) {
+    const double x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l];
+    const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
+    const double c0 = y * u2 - z * u1, c1 = z * u0 - x * u2, c2 = x * u1 - y * u0;
+    psi[0][l] = u0 + r.b[l] * c0 + r.c[l] * (y * c2 - z * c1);
+    psi[1][l] = u1 + r.b[l] * c1 + r.c[l] * (z * c0 - x * c2);
+    psi[2][l] = u2 + r.b[l] * c2 + r.c[l] * (x * c1 - y * c0);
+  }
+}
+
+// target = psi x m (column by column) + R d for 3 by 2 lane-minor blocks m, d (d may be null:
+// no R d term).
+MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation& r, const double psi[3][L], const double* m,
+                               const double* d, double* target) {
+  for (int row = 0; row < 3; ++row) {
+    const int p = (row + 1) % 3, q = (row + 2) % 3;
+    for (int col = 0; col < 2; ++col) {
+      const double* mp = m + (2 * p + col) * L;
+      const double* mq = m + (2 * q + col) * L;
+      double* t = target + (2 * row + col) * L;
+      for (int l = 0; l < L; ++l) t[l] = psi[p][l] * mq[l] - psi[q][l] * mp[l];
+      if (d == nullptr) continue;
+      for (int l = 0; l < L; ++l)
+        t[l] += r.rot[3 * row][l] * d[col * L + l] + r.rot[3 * row + 1][l] * d[(2 + col) * L + l] +
+                r.rot[3 * row + 2][l] * d[(4 + col) * L + l];
+    }
+  }
+}
+
+// x = sum over the two columns of m_col x res_col, per lane (3 rows of lanes); m, res: 3 by 2
+// lane-minor blocks. Then <res, [v]_x m> = v . x.
+MESHIK_LANE_INLINE void column_cross_sum(const double* m, const double* res, double x[3][L]) {
+  for (int row = 0; row < 3; ++row) {
+    const int p = (row + 1) % 3, q = (row + 2) % 3;
+    for (int l = 0; l < L; ++l) {
+      double sum = 0.0;
+      for (int col = 0; col < 2; ++col)
+        sum += m[(2 * p + col) * L + l] * res[(2 * q + col) * L + l] -
+               m[(2 * q + col) * L + l] * res[(2 * p + col) * L + l];
+      x[row][l] = sum;
+    }
+  }
+}
+
+MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], int l) {
+  return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
+}
+
+}  // namespace
+
 MESHIK_SIMD_CLONES
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out) {
-  constexpr int L = kLanes;
   const int k = features.num_examples;
   const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
   if (space == FeatureSpace::kLinear) {
@@ -81,70 +170,78 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
     return;
   }
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  double phi[3][L] = {};
-  double stretch[6][L];
-  for (int e = 0; e < 6; ++e)
-    for (int l = 0; l < L; ++l) stretch[e][l] = basis[e * L + l];
-  for (int i = 0; i < k; ++i) {
-    const double* f = feature + i * 9 * L;
-    for (int r = 0; r < 3; ++r)
-      for (int l = 0; l < L; ++l) phi[r][l] += w[i] * f[r * L + l];
-    for (int e = 0; e < 6; ++e)
-      for (int l = 0; l < L; ++l) stretch[e][l] += w[i] * f[(3 + e) * L + l];
-  }
-  double t2[L], a[L], b[L], c[L];
-  for (int l = 0; l < L; ++l) t2[l] = phi[0][l] * phi[0][l] + phi[1][l] * phi[1][l] + phi[2][l] * phi[2][l];
-  rodrigues_lanes<L>(t2, a, b, c);
-  // R = I + a [phi]_x + b [phi]_x^2, row-major, per lane.
-  double rot[9][L];
-  for (int l = 0; l < L; ++l) {
-    const double x = phi[0][l], y = phi[1][l], z = phi[2][l];
-    rot[0][l] = 1.0 - b[l] * (y * y + z * z);
-    rot[1][l] = b[l] * x * y - a[l] * z;
-    rot[2][l] = b[l] * x * z + a[l] * y;
-    rot[3][l] = b[l] * x * y + a[l] * z;
-    rot[4][l] = 1.0 - b[l] * (x * x + z * z);
-    rot[5][l] = b[l] * y * z - a[l] * x;
-    rot[6][l] = b[l] * x * z - a[l] * y;
-    rot[7][l] = b[l] * y * z + a[l] * x;
-    rot[8][l] = 1.0 - b[l] * (x * x + y * y);
-  }
-  // F = R (U + sum w_i D_i).
-  for (int r = 0; r < 3; ++r)
-    for (int col = 0; col < 2; ++col)
-      for (int l = 0; l < L; ++l)
-        out[(2 * r + col) * L + l] = rot[3 * r][l] * stretch[col][l] +
-                                     rot[3 * r + 1][l] * stretch[2 + col][l] +
-                                     rot[3 * r + 2][l] * stretch[4 + col][l];
+  BatchRotation r;
+  blend_rotation(feature, w, k, r);
+  // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
+  double stretch[6 * L];
+  for (int e = 0; e < 6 * L; ++e) stretch[e] = basis[e];
+  for (int i = 0; i < k; ++i)
+    for (int e = 0; e < 6 * L; ++e) stretch[e] += w[i] * feature[(i * 9 + 3) * L + e];
+  const double zero[3][L] = {};
+  cross_plus_rotated(r, zero, stretch, stretch, out);
   // dF/dw_i = psi_i x F (column by column) + R D_i, psi_i = J_l(phi) phi_i, because
   // d exp(phi)/dw_i = [J_l(phi) phi_i]_x exp(phi) (so3.h).
   for (int i = 0; i < k; ++i) {
-    const double* f = feature + i * 9 * L;
-    const double* d = f + 3 * L;
-    double* o = out + (i + 1) * 6 * L;
     double psi[3][L];
-    for (int l = 0; l < L; ++l) {
-      const double x = phi[0][l], y = phi[1][l], z = phi[2][l];
-      const double u0 = f[l], u1 = f[L + l], u2 = f[2 * L + l];
-      const double c0 = y * u2 - z * u1, c1 = z * u0 - x * u2, c2 = x * u1 - y * u0;
-      psi[0][l] = u0 + b[l] * c0 + c[l] * (y * c2 - z * c1);
-      psi[1][l] = u1 + b[l] * c1 + c[l] * (z * c0 - x * c2);
-      psi[2][l] = u2 + b[l] * c2 + c[l] * (x * c1 - y * c0);
-    }
-    // Row r, column col: (psi x F_col)_r + (R D)_{r,col}; the cross product's row r pairs
-    // components r+1 and r+2 (cyclic).
-    for (int r = 0; r < 3; ++r) {
-      const int p = (r + 1) % 3, q = (r + 2) % 3;
-      for (int col = 0; col < 2; ++col) {
-        const double* fp = out + (2 * p + col) * L;
-        const double* fq = out + (2 * q + col) * L;
-        const double* d0 = d + col * L;
-        const double* d1 = d + (2 + col) * L;
-        const double* d2 = d + (4 + col) * L;
-        double* target = o + (2 * r + col) * L;
-        for (int l = 0; l < L; ++l)
-          target[l] = psi[p][l] * fq[l] - psi[q][l] * fp[l] + rot[3 * r][l] * d0[l] +
-                      rot[3 * r + 1][l] * d1[l] + rot[3 * r + 2][l] * d2[l];
+    left_jacobian_times(r, feature + i * 9 * L, psi);
+    cross_plus_rotated(r, psi, out, feature + (i * 9 + 3) * L, out + (i + 1) * 6 * L);
+  }
+}
+
+MESHIK_SIMD_CLONES
+void accumulate_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
+                                   const double* out, const double* residual,
+                                   double* curvature_lanes) {
+  const int k = features.num_examples;
+  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  BatchRotation r;
+  blend_rotation(feature, w, k, r);
+  double db[L], dc[L];
+  rodrigues_derivative_lanes<L>(r.theta_squared, r.a, r.b, r.c, db, dc);
+  // With X(M) = sum_col M_col x R_col, <R, [v]_x M> = v . X(M), and
+  //   d2F/dw_a dw_b = [d psi_a / dw_b]_x F + [psi_a]_x dF/dw_b + [psi_b]_x R D_a,
+  // so <R, d2F/dw_a dw_b> = (d psi_a/dw_b) . X(F) + psi_a . X(J_b) + psi_b . X(R D_a).
+  double x_f[3][L], x_f_phi[3][L];
+  column_cross_sum(out, residual, x_f);
+  for (int l = 0; l < L; ++l) {
+    x_f_phi[0][l] = x_f[1][l] * r.phi[2][l] - x_f[2][l] * r.phi[1][l];
+    x_f_phi[1][l] = x_f[2][l] * r.phi[0][l] - x_f[0][l] * r.phi[2][l];
+    x_f_phi[2][l] = x_f[0][l] * r.phi[1][l] - x_f[1][l] * r.phi[0][l];
+  }
+  for (int a = 0; a < k; ++a) {
+    const double* u = feature + a * 9 * L;  // phi_a
+    double psi_a[3][L], x_rd[3][L], rotated_d[6 * L];
+    left_jacobian_times(r, u, psi_a);
+    // R D_a = J_a - psi_a x F.
+    cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
+    for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
+    column_cross_sum(rotated_d, residual, x_rd);
+    for (int b = 0; b < k; ++b) {
+      const double* v = feature + b * 9 * L;  // phi_b
+      double psi_b[3][L], x_jb[3][L];
+      left_jacobian_times(r, v, psi_b);
+      column_cross_sum(out + (b + 1) * 6 * L, residual, x_jb);
+      double* acc = curvature_lanes + (a * k + b) * L;
+      for (int l = 0; l < L; ++l) {
+        const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
+        const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
+        const double v0 = v[l], v1 = v[L + l], v2 = v[2 * L + l];
+        // pu = phi x u, vu = v x u.
+        const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
+        const double vu0 = v1 * u2 - v2 * u1, vu1 = v2 * u0 - v0 * u2, vu2 = v0 * u1 - v1 * u0;
+        const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
+        // x x v for the term (v x pu) . x = pu . (x x v).
+        const double xv0 = x1 * v2 - x2 * v1, xv1 = x2 * v0 - x0 * v2, xv2 = x0 * v1 - x1 * v0;
+        const double phi_v = px * v0 + py * v1 + pz * v2;
+        const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2;
+        const double pu_xphi = pu0 * x_f_phi[0][l] + pu1 * x_f_phi[1][l] + pu2 * x_f_phi[2][l];
+        const double vu_x = vu0 * x0 + vu1 * x1 + vu2 * x2;
+        const double vu_xphi = vu0 * x_f_phi[0][l] + vu1 * x_f_phi[1][l] + vu2 * x_f_phi[2][l];
+        const double pu_xv = pu0 * xv0 + pu1 * xv1 + pu2 * xv2;
+        // (d psi_a / dw_b) . x with d/dv [u + b phi x u + c phi x (phi x u)].
+        const double dpsi_x = 2.0 * phi_v * (db[l] * pu_x + dc[l] * pu_xphi) + r.b[l] * vu_x +
+                              r.c[l] * (pu_xv + vu_xphi);
+        acc[l] += dpsi_x + dot_lane(psi_a, x_jb, l) + dot_lane(psi_b, x_rd, l);
       }
     }
   }

@@ -1,33 +1,28 @@
-// The damped Gauss-Newton loop over the blend weights.
+// The safeguarded Gauss-Newton loop over the blend weights: trust-region steps of the quadratic
+// model with the Gauss-Newton matrix S plus the energy's second-order term.
 #include "gauss_newton.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "trust_region.h"
 
 namespace meshik {
 
 namespace {
 
-constexpr double kFirstDamping = 1e-4;
-constexpr double kDampingGrowth = 10.0;
-constexpr double kSmallestDamping = 1e-10;
 // Energy per triangle below which a decrease is rounding noise (the energy is dimensionless:
 // squared differences of deformation gradients, O(1) per triangle).
 constexpr double kNoiseEnergyPerTriangle = 1e-20;
 
-// Solves (S + damping diag(S)) delta = g; returns false if the system is numerically singular.
-bool damped_step(const PoseEvaluation& at, double damping, Eigen::VectorXd& delta) {
-  Eigen::MatrixXd a = at.schur;
-  const double scale = std::max(a.diagonal().maxCoeff(), 1e-300);
-  for (int i = 0; i < a.rows(); ++i)
-    a(i, i) += damping * std::max(a(i, i), 1e-12 * scale);
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
-  if (ldlt.info() != Eigen::Success) return false;
-  delta = ldlt.solve(at.step_rhs);
-  return delta.allFinite();
+// sqrt(diag S), floored at a small fraction of the largest entry: the trust region's scaling.
+Eigen::VectorXd step_scale(const Eigen::MatrixXd& schur) {
+  const double largest = std::max(schur.diagonal().maxCoeff(), 1e-300);
+  return schur.diagonal().cwiseMax(1e-12 * largest).cwiseSqrt();
 }
 
 }  // namespace
@@ -44,38 +39,35 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
 
   SolveResult result;
   result.energies.push_back(current.energy);
-  double damping = 0.0;
-  Eigen::VectorXd delta;
+  double radius = -1.0;  // set from the first Gauss-Newton step
   while (k > 0) {
-    const bool solvable = damped_step(current, damping, delta);
-    // Decrease of the Gauss-Newton model: 2 g.delta - delta^T S delta.
-    const double predicted =
-        solvable ? 2.0 * current.step_rhs.dot(delta) - delta.dot(current.schur * delta) : 0.0;
-    if (solvable && !(predicted > options.tolerance * current.energy + noise)) {
+    const Eigen::VectorXd scale = step_scale(current.schur);
+    const GaussNewtonModel gauss_newton = gauss_newton_model(current.schur, current.step_rhs, scale);
+    if (!(gauss_newton.decrease > options.tolerance * current.energy + noise)) {
       result.converged = true;
       break;
     }
     if (result.iterations == options.max_iterations) break;
-    if (solvable) {
-      const Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(current.weights.data(), k) + delta;
-      evaluator.evaluate(next.data(), true, trial);
-    }
+    if (radius < 0.0) radius = gauss_newton.scaled_length;
+    const TrustRegionStep step = trust_region_step(current.schur + current.second_order,
+                                                   current.step_rhs, scale, radius);
+    const Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(current.weights.data(), k) + step.delta;
+    evaluator.evaluate(next.data(), true, trial);
     ++result.iterations;
     if (progress && !progress(static_cast<double>(result.iterations) / options.max_iterations,
                               "Gauss-Newton iteration " + std::to_string(result.iterations)))
       throw Cancelled("cancelled at Gauss-Newton iteration " + std::to_string(result.iterations));
-    if (solvable && trial.energy <= current.energy) {
-      const double decrease = current.energy - trial.energy;
+
+    const double decrease = current.energy - trial.energy;
+    radius = updated_radius(radius, step, decrease);
+    if (decrease >= 0.0) {
       const double before = current.energy;
       std::swap(current, trial);
       result.energies.push_back(current.energy);
-      damping = damping * 0.1 < kSmallestDamping ? 0.0 : damping * 0.1;
-      if (decrease <= options.tolerance * before) {
+      if (decrease <= options.tolerance * before + noise && !step.on_boundary) {
         result.converged = true;
         break;
       }
-    } else {
-      damping = damping == 0.0 ? kFirstDamping : damping * kDampingGrowth;
     }
   }
   result.vertices = std::move(current.vertices);

@@ -68,4 +68,21 @@ inline void rodrigues_lanes(const double* theta_squared, double* a, double* b, d
   }
 }
 
+// For each lane, the derivatives with respect to theta_squared of the coefficients b and c of
+// rodrigues_lanes: db = (a - 2 b) / (2 t^2), dc = (b - 3 c) / (2 t^2) (Taylor series below
+// t = 0.1). a, b, c: that function's output for the same theta_squared.
+template <int kLanes>
+inline void rodrigues_derivative_lanes(const double* theta_squared, const double* a, const double* b,
+                                       const double* c, double* db, double* dc) {
+  for (int l = 0; l < kLanes; ++l) {
+    const double t2 = theta_squared[l];
+    const double small_db = -1.0 / 24.0 + t2 * (1.0 / 360.0 - t2 * (1.0 / 13440.0 - t2 / 907200.0));
+    const double small_dc = -1.0 / 120.0 + t2 * (1.0 / 2520.0 - t2 * (1.0 / 120960.0 - t2 / 9979200.0));
+    const bool small = t2 < 1e-2;
+    const double half_inverse = 0.5 / (small ? 1.0 : t2);
+    db[l] = small ? small_db : (a[l] - 2.0 * b[l]) * half_inverse;
+    dc[l] = small ? small_dc : (b[l] - 3.0 * c[l]) * half_inverse;
+  }
+}
+
 }  // namespace meshik

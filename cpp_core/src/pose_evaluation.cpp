@@ -1,4 +1,7 @@
 // The reduced energy, its optimal vertices and its Gauss-Newton system at given weights.
+// GCC 12 reports a false -Wmaybe-uninitialized inside Eigen's AVX-512 reductions (built with
+// -march=native); the values it names are always written first.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "pose_evaluation.h"
 
 #include <algorithm>
@@ -62,24 +65,25 @@ void scatter_batch(const double* out, int columns, int lanes, const int* triangl
   }
 }
 
-// sum over triangles of |Q_j(x) - F_j|^2; blended: F in the batch layout of feature_space.h.
+// R_j = Q_j(x) - F_j for the `lanes` triangles of one batch, 6 rows of kLanes (padding lanes
+// zero); returns sum |R_j|^2. vertices: #V by 3; triangles / gradient: the batch's first triangle's
+// entries; blended: the batch's F (6 rows of kLanes).
 MESHIK_SIMD_CLONES
-double residual_energy(const double* vertices, const int* triangles, const double* gradient,
-                       const double* blended, int num_triangles) {
-  double energy = 0.0;
-  for (int j = 0; j < num_triangles; ++j) {
-    const int* t = triangles + 3 * j;
-    const double* g = gradient + 6 * static_cast<size_t>(j);
-    const double* f = blended + static_cast<size_t>(j / L) * 6 * L + j % L;
-    const double* x0 = vertices + 3 * static_cast<size_t>(t[0]);
-    const double* x1 = vertices + 3 * static_cast<size_t>(t[1]);
-    const double* x2 = vertices + 3 * static_cast<size_t>(t[2]);
+double batch_residual(const double* vertices, const int* triangles, const double* gradient,
+                      const double* blended, int lanes, double* residual) {
+  std::fill(residual, residual + 6 * L, 0.0);
+  for (int l = 0; l < lanes; ++l) {
+    const double* g = gradient + 6 * l;
+    const double* x0 = vertices + 3 * static_cast<size_t>(triangles[3 * l]);
+    const double* x1 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 1]);
+    const double* x2 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 2]);
     for (int c = 0; c < 3; ++c) {
-      const double r0 = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - f[(2 * c) * L];
-      const double r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - f[(2 * c + 1) * L];
-      energy += r0 * r0 + r1 * r1;
+      residual[(2 * c) * L + l] = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - blended[(2 * c) * L + l];
+      residual[(2 * c + 1) * L + l] = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - blended[(2 * c + 1) * L + l];
     }
   }
+  double energy = 0.0;
+  for (int e = 0; e < 6 * L; ++e) energy += residual[e] * residual[e];
   return energy;
 }
 
@@ -118,7 +122,8 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       scatter_rows_(6 * (set.num_examples + 1)),
       blended_(6 * L * static_cast<size_t>(set.features.num_batches)),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
-      jts_lanes_(static_cast<size_t>(set.num_examples) * L) {
+      jts_lanes_(static_cast<size_t>(set.num_examples) * L),
+      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L) {
   const int k = set.num_examples;
   const size_t rhs_size = static_cast<size_t>(system.num_unknowns()) * 3 * (k + 1);
   rhs_.resize(rhs_size);
@@ -205,6 +210,29 @@ void PoseEvaluator::gather_vertices(int columns, double* vertices) const {
   }
 }
 
+double PoseEvaluator::residual_pass(const double* weights, const double* vertices, bool curvature) {
+  std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
+  double energy = 0.0;
+  double residual[6 * L];
+  double* out = batch_out_.data();
+  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+    const int first = batch * L;
+    const int lanes = std::min(L, set_.num_triangles - first);
+    const double* blended = blended_.data() + static_cast<size_t>(batch) * 6 * L;
+    if (curvature) {
+      blend_batch(set_.features, space_, weights, batch, out);
+      blended = out;
+    }
+    energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
+                             set_.frames.gradient.data() + 6 * static_cast<size_t>(first), blended,
+                             lanes, residual);
+    if (curvature)
+      accumulate_residual_curvature(set_.features, weights, batch, out, residual,
+                                    curvature_lanes_.data());
+  }
+  return energy;
+}
+
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   const int k = set_.num_examples;
   const int columns = with_jacobian ? k + 1 : 1;
@@ -219,9 +247,14 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
   gather_vertices(columns, out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
-  out.energy = residual_energy(out.vertices.data(), set_.triangles.data(), set_.frames.gradient.data(),
-                               blended_.data(), set_.num_triangles) +
-               regularization_ * w.squaredNorm();
+  const bool curvature = with_jacobian && space_ == FeatureSpace::kNonlinear;
+  out.energy = residual_pass(weights, out.vertices.data(), curvature) + regularization_ * w.squaredNorm();
+  out.second_order.setZero(k, k);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int l = 0; l < L; ++l)
+        out.second_order(a, b) -= 0.5 * (curvature_lanes_[(a * k + b) * L + l] +
+                                         curvature_lanes_[(b * k + a) * L + l]);
   if (!with_jacobian) return;
 
   Eigen::MatrixXd htz = Eigen::MatrixXd::Zero(k, k);

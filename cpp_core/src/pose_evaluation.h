@@ -22,6 +22,9 @@ struct PoseEvaluation {
   double energy = 0.0;           // phi(w), regularization included
   Eigen::MatrixXd schur;         // #E by #E: S (only with the Jacobian)
   Eigen::VectorXd step_rhs;      // #E: g = -(1/2) d phi / dw (only with the Jacobian)
+  // #E by #E: -sum_j <R_j, d2F_j/dw dw>, so that S + second_order is half the Hessian of phi
+  // (zero in the linear space and without the Jacobian).
+  Eigen::MatrixXd second_order;
 };
 
 class PoseEvaluator {
@@ -40,6 +43,9 @@ class PoseEvaluator {
   void assemble(const double* weights, int columns, bool with_jacobian);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(int columns, double* vertices) const;
+  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3); with curvature, also accumulates
+  // curvature_lanes_ (re-blending each batch).
+  double residual_pass(const double* weights, const double* vertices, bool curvature);
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
@@ -56,6 +62,7 @@ class PoseEvaluator {
   std::vector<double> rhs_before_solve_; // copy of rhs_ (H = G'^T J is needed after the solve)
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
+  std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane
   Eigen::MatrixXd jtj_;                  // #E by #E
   Eigen::VectorXd jts_;                  // #E: J^T s
 };

@@ -1,10 +1,20 @@
 // MESHIK_SIMD_CLONES marks a hot loop function to be compiled for AVX-512, AVX2+FMA and the
 // baseline instruction set, the best one being chosen at load time (GCC function multiversioning),
 // so the library stays portable while its batch loops use the machine's full vector width.
+// When the whole build already targets AVX2 or better (e.g. -march=native) there is nothing to
+// choose, and clones would only stop the inline helpers of the loops from being inlined.
 #pragma once
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(__AVX2__)
 #define MESHIK_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define MESHIK_SIMD_CLONES
+#endif
+
+// Helpers of those loops: always inlined, so their fixed-size lane arrays stay in registers.
+#if defined(__GNUC__)
+#define MESHIK_LANE_INLINE __attribute__((always_inline)) inline
+#else
+#define MESHIK_LANE_INLINE inline
 #endif

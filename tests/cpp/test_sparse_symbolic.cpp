@@ -1,23 +1,30 @@
-// Symbolic analysis (elimination tree, postorder, column counts) against a brute-force
-// symbolic elimination on dense boolean matrices.
+// Symbolic analysis (adjacency graph, ordering, elimination tree, postorder, column counts,
+// supernodes and their row structures) against a brute-force symbolic elimination on dense
+// boolean matrices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
 #include "sparse/column_counts.h"
 #include "sparse/elimination_tree.h"
-#include "sparse/permuted_matrix.h"
+#include "sparse/ordering.h"
+#include "sparse/supernodes.h"
+#include "sparse/symbolic.h"
+#include "sparse/symmetric_graph.h"
+#include "sparse_test_matrices.h"
 
 using namespace meshik::sparse;
+using BoolMatrix = std::vector<std::vector<bool>>;
 
 namespace {
 
 // A random symmetric boolean n by n pattern with the given off-diagonal density, diagonal set.
-std::vector<std::vector<bool>> random_pattern(int n, double density, unsigned seed) {
+BoolMatrix random_pattern(int n, double density, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
-  std::vector<std::vector<bool>> a(n, std::vector<bool>(n, false));
+  BoolMatrix a(n, std::vector<bool>(n, false));
   for (int j = 0; j < n; ++j) {
     a[j][j] = true;
     for (int i = j + 1; i < n; ++i) a[i][j] = a[j][i] = coin(rng) < density;
@@ -25,22 +32,19 @@ std::vector<std::vector<bool>> random_pattern(int n, double density, unsigned se
   return a;
 }
 
-// Lower (rows >= col) or upper (rows <= col) triangle of a boolean pattern as a Pattern.
-Pattern triangle(const std::vector<std::vector<bool>>& a, bool lower) {
-  Pattern p;
-  p.n = static_cast<int>(a.size());
-  p.col_start.push_back(0);
-  for (int j = 0; j < p.n; ++j) {
-    for (int i = 0; i < p.n; ++i)
-      if (a[i][j] && (lower ? i >= j : i <= j)) p.row_index.push_back(i);
-    p.col_start.push_back(static_cast<int>(p.row_index.size()));
-  }
-  return p;
+// The lower triangle of a boolean pattern as a CscMatrix with unit values.
+meshik::CscMatrix lower_matrix(const BoolMatrix& a) {
+  const int n = static_cast<int>(a.size());
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if (a[i][j]) dense(i, j) = 1.0;
+  return meshik_test::lower_from_dense(dense);
 }
 
 // Structure of L by symbolic elimination: L(i, j) != 0 for i > j iff A(i, j) != 0 or
 // L(i, k) and L(j, k) != 0 for some k < j. Returns the n by n boolean lower triangle.
-std::vector<std::vector<bool>> symbolic_factor(std::vector<std::vector<bool>> l) {
+BoolMatrix symbolic_elimination(BoolMatrix l) {
   const int n = static_cast<int>(l.size());
   for (int k = 0; k < n; ++k)
     for (int j = k + 1; j < n; ++j)
@@ -50,18 +54,52 @@ std::vector<std::vector<bool>> symbolic_factor(std::vector<std::vector<bool>> l)
   return l;
 }
 
+// P A P^T of a boolean pattern, perm[k] = old index of new k.
+BoolMatrix permuted(const BoolMatrix& a, const std::vector<int>& perm) {
+  const int n = static_cast<int>(a.size());
+  BoolMatrix c(n, std::vector<bool>(n, false));
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) c[i][j] = a[perm[i]][perm[j]];
+  return c;
+}
+
+std::vector<int> identity(int n) {
+  std::vector<int> p(n);
+  for (int i = 0; i < n; ++i) p[i] = i;
+  return p;
+}
+
 }  // namespace
+
+TEST(SparseSymbolic, AdjacencyGraphIsSymmetricAndSorted) {
+  const BoolMatrix a = random_pattern(40, 0.15, 3);
+  const Pattern g = adjacency_graph(lower_matrix(a));
+  for (int v = 0; v < 40; ++v) {
+    std::vector<int> expected;
+    for (int u = 0; u < 40; ++u)
+      if (u != v && a[u][v]) expected.push_back(u);
+    EXPECT_EQ(std::vector<int>(g.row_index.begin() + g.col_start[v], g.row_index.begin() + g.col_start[v + 1]),
+              expected)
+        << "node " << v;
+  }
+}
 
 TEST(SparseSymbolic, EliminationTreeAndCountsMatchBruteForce) {
   unsigned seed = 1;
   for (int n : {1, 2, 5, 12, 40, 90})
     for (double density : {0.0, 0.03, 0.1, 0.4, 1.0}) {
       SCOPED_TRACE("n=" + std::to_string(n) + " density=" + std::to_string(density));
-      const auto a = random_pattern(n, density, seed++);
-      const auto l = symbolic_factor(a);
-      const std::vector<int> parent = elimination_tree(triangle(a, false));
+      const BoolMatrix a = random_pattern(n, density, seed++);
+      const Pattern graph = adjacency_graph(lower_matrix(a));
+      // Under a random permutation, compared with elimination of the permuted pattern.
+      std::vector<int> perm = identity(n);
+      std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+      const std::vector<int> inverse = invert_permutation(perm);
+      const Pattern view = permuted_graph(graph, perm, inverse);
+      const BoolMatrix l = symbolic_elimination(permuted(a, perm));
+      const std::vector<int> parent = elimination_tree(view);
       const std::vector<int> post = tree_postorder(parent);
-      const std::vector<int> counts = column_counts(triangle(a, true), parent, post);
+      const std::vector<int> counts = column_counts(view, parent, post);
       for (int j = 0; j < n; ++j) {
         // parent[j]: the first off-diagonal row of column j of L.
         int first_row = -1, count = 1;
@@ -74,6 +112,72 @@ TEST(SparseSymbolic, EliminationTreeAndCountsMatchBruteForce) {
         EXPECT_EQ(counts[j], count) << "column " << j;
       }
     }
+}
+
+TEST(SparseSymbolic, SupernodeRowsMatchBruteForce) {
+  unsigned seed = 100;
+  for (int n : {1, 3, 20, 60, 150})
+    for (double density : {0.0, 0.02, 0.08, 0.3, 1.0}) {
+      SCOPED_TRACE("n=" + std::to_string(n) + " density=" + std::to_string(density));
+      const BoolMatrix a = random_pattern(n, density, seed++);
+      const Pattern graph = adjacency_graph(lower_matrix(a));
+      // Postordered fill-reducing order, as SparseCholesky::analyze builds it.
+      const std::vector<int> order = minimum_degree_ordering(graph);
+      const Pattern ordered = permuted_graph(graph, order, invert_permutation(order));
+      const std::vector<int> order_parent = elimination_tree(ordered);
+      const std::vector<int> post = tree_postorder(order_parent);
+      std::vector<int> perm(n);
+      for (int k = 0; k < n; ++k) perm[k] = order[post[k]];
+      const std::vector<int> inverse = invert_permutation(perm);
+      const Pattern view = permuted_graph(graph, perm, inverse);
+      const std::vector<int> parent = relabel_tree(order_parent, post);
+      const std::vector<int> counts = column_counts(view, parent, tree_postorder(parent));
+      const SupernodePartition partition = find_supernodes(parent, counts);
+      const SymbolicFactor f = symbolic_factor(view, parent, counts, partition, 0);
+      std::vector<int> supernode_of(n);
+      for (int s = 0; s < f.num_supernodes(); ++s)
+        for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) supernode_of[j] = s;
+      const BoolMatrix l = symbolic_elimination(permuted(a, perm));
+      ASSERT_EQ(f.first_column.back(), n);
+      for (int s = 0; s < f.num_supernodes(); ++s) {
+        const int first = f.first_column[s], end = f.first_column[s + 1];
+        ASSERT_LT(first, end);
+        // Stored rows: the supernode's columns, then the union of its columns' rows below it.
+        std::vector<int> expected;
+        for (int j = first; j < end; ++j) expected.push_back(j);
+        for (int i = end; i < n; ++i) {
+          bool any = false;
+          for (int j = first; j < end; ++j) any = any || l[i][j];
+          if (any) expected.push_back(i);
+        }
+        EXPECT_EQ(std::vector<int>(f.rows.begin() + f.row_start[s], f.rows.begin() + f.row_start[s + 1]), expected)
+            << "supernode " << s;
+        // The parent supernode owns the first row below.
+        EXPECT_EQ(f.parent[s], expected.size() > static_cast<size_t>(end - first)
+                                   ? supernode_of[expected[end - first]]
+                                   : -1);
+      }
+      long long nnz = 0;
+      for (int j = 0; j < n; ++j)
+        for (int i = j; i < n; ++i) nnz += l[i][j];
+      EXPECT_EQ(f.structural_nonzeros, nnz);
+    }
+}
+
+TEST(SparseSymbolic, SimplicialNodesHaveCliqueNeighbourhoods) {
+  // A 4-cycle 0-1-2-3 with chord 0-2; node 4 joined to the triangle 0, 1, 2 and node 5 to
+  // the edge 0-3 (simplicial: their neighbours are pairwise adjacent); node 6 joined to 1 and
+  // 3, which are not adjacent (not simplicial).
+  BoolMatrix a(7, std::vector<bool>(7, false));
+  auto edge = [&](int u, int v) { a[u][v] = a[v][u] = true; };
+  for (int v = 0; v < 7; ++v) a[v][v] = true;
+  edge(0, 1), edge(1, 2), edge(2, 3), edge(3, 0), edge(0, 2);
+  edge(4, 0), edge(4, 1), edge(4, 2);
+  edge(5, 0), edge(5, 3);
+  edge(6, 1), edge(6, 3);
+  const Pattern graph = adjacency_graph(lower_matrix(a));
+  EXPECT_EQ(simplicial_nodes(graph, 4), (std::vector<int>{4, 5}));
+  EXPECT_EQ(simplicial_nodes(graph, 2), (std::vector<int>{5}));
 }
 
 TEST(SparseSymbolic, PostorderVisitsDescendantsFirstAndContiguously) {
@@ -90,13 +194,8 @@ TEST(SparseSymbolic, PostorderVisitsDescendantsFirstAndContiguously) {
     if (parent[j] != -1) EXPECT_LT(position[j], position[parent[j]]);
   // The subtree of 6 is {0, 1, 2, 3, 4, 6}: six consecutive positions ending at 6's.
   for (int j : {0, 1, 2, 3, 4}) EXPECT_GE(position[j], position[6] - 5);
-}
-
-TEST(SparseSymbolic, TransposeSortsRows) {
-  const auto a = random_pattern(30, 0.2, 5);
-  const Pattern upper = triangle(a, false);
-  const Pattern lower = triangle(a, true);
-  const Pattern t = transpose(upper);
-  EXPECT_EQ(t.col_start, lower.col_start);
-  EXPECT_EQ(t.row_index, lower.row_index);
+  // Relabelled by the postorder, every parent is larger than its child.
+  const std::vector<int> relabeled = relabel_tree(parent, post);
+  for (size_t k = 0; k < relabeled.size(); ++k)
+    if (relabeled[k] != -1) EXPECT_GT(relabeled[k], static_cast<int>(k));
 }

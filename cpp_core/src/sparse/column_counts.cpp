@@ -29,9 +29,9 @@ int find_root(std::vector<int>& ancestor, int i) {
 
 }  // namespace
 
-std::vector<int> column_counts(const Pattern& lower, const std::vector<int>& parent,
+std::vector<int> column_counts(const Pattern& graph, const std::vector<int>& parent,
                                const std::vector<int>& post) {
-  const int n = lower.n;
+  const int n = graph.n;
   const std::vector<int> first = first_descendants(parent, post);
   // delta[j]: count contributions that sum over the subtree of j to nnz(L(:, j)).
   std::vector<int> delta(n, 0);
@@ -44,8 +44,8 @@ std::vector<int> column_counts(const Pattern& lower, const std::vector<int>& par
   for (int k = 0; k < n; ++k) {
     const int j = post[k];
     if (parent[j] != -1) --delta[parent[j]];
-    for (int p = lower.col_start[j]; p < lower.col_start[j + 1]; ++p) {
-      const int i = lower.row_index[p];
+    for (int p = graph.col_start[j]; p < graph.col_start[j + 1]; ++p) {
+      const int i = graph.row_index[p];
       // j is a leaf of row subtree i iff A(i, j) != 0, i > j, and no earlier leaf of that
       // subtree lies inside j's subtree (first[j] > max_first[i]).
       if (i <= j || first[j] <= max_first[i]) continue;

@@ -4,14 +4,14 @@
 
 #include <vector>
 
-#include "sparse/pattern.h"
+#include "sparse/symmetric_graph.h"
 
 namespace meshik::sparse {
 
-// lower:  the lower triangle of a symmetric n by n pattern (column j holds rows i >= j)
+// graph:  adjacency of a symmetric n by n matrix (column j: the neighbours of node j)
 // parent: its elimination tree (n entries), post: a postorder of it (n entries)
-// Returns n counts: nnz(L(:, j)), diagonal included. Time O(nnz(lower) * alpha(n)).
-std::vector<int> column_counts(const Pattern& lower, const std::vector<int>& parent,
+// Returns n counts: nnz(L(:, j)), diagonal included. Time O(nnz(A) * alpha(n)).
+std::vector<int> column_counts(const Pattern& graph, const std::vector<int>& parent,
                                const std::vector<int>& post);
 
 }  // namespace meshik::sparse

@@ -2,16 +2,15 @@
 
 namespace meshik::sparse {
 
-std::vector<int> elimination_tree(const Pattern& upper) {
-  const int n = upper.n;
+std::vector<int> elimination_tree(const Pattern& graph) {
+  const int n = graph.n;
   std::vector<int> parent(n, -1);
   // ancestor[i]: a known ancestor of i (path-compressed), -1 when i is a root so far.
   std::vector<int> ancestor(n, -1);
   for (int k = 0; k < n; ++k) {
-    for (int p = upper.col_start[k]; p < upper.col_start[k + 1]; ++p) {
+    for (int p = graph.col_start[k]; p < graph.col_start[k + 1]; ++p) {
       // A(i, k) != 0 with i < k: k is an ancestor of i; climb to i's current root.
-      int i = upper.row_index[p];
-      while (i != -1 && i < k) {
+      for (int i = graph.row_index[p]; i != -1 && i < k;) {
         const int next = ancestor[i];
         ancestor[i] = k;
         if (next == -1) parent[i] = k;

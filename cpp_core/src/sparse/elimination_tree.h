@@ -3,14 +3,14 @@
 
 #include <vector>
 
-#include "sparse/pattern.h"
+#include "sparse/symmetric_graph.h"
 
 namespace meshik::sparse {
 
-// upper: the upper triangle of a symmetric n by n pattern (column k holds rows i <= k).
+// graph: adjacency of a symmetric n by n matrix (column k: the neighbours of node k).
 // Returns parent, n entries: parent[j] is the parent of column j in the elimination tree of
 // the Cholesky factor, or -1 for a root. parent[j] > j always.
-std::vector<int> elimination_tree(const Pattern& upper);
+std::vector<int> elimination_tree(const Pattern& graph);
 
 // parent: a forest with parent[j] > j or -1. Returns post, n entries: post[k] is the k-th
 // node of a depth-first postorder (children in increasing order, every node after its

@@ -6,6 +6,7 @@
 
 #include "meshik/sparse_cholesky.h"
 #include "sparse/dense_kernels.h"
+#include "sparse/simplicial_prefix.h"
 
 namespace meshik::sparse {
 
@@ -19,14 +20,15 @@ struct Workspace {
   std::vector<size_t> stack_offset;     // #S: where each supernode's update matrix sits
 };
 
-// Adds A's columns first .. first+k-1 into the r by k block `block` (rows: position[]).
-void gather_columns(const LowerValues& a, int first, int k, int r, const std::vector<int>& position,
-                    double* block) {
+// Adds the lower triangle's columns first .. first+k-1 into the r by k block `block`
+// (rows: position[]).
+void gather_columns(const Pattern& lower, const double* lower_values, int first, int k, int r,
+                    const std::vector<int>& position, double* block) {
   for (int c = 0; c < k; ++c) {
     double* column = block + static_cast<long>(c) * r;
     const int j = first + c;
-    for (int p = a.pattern->col_start[j]; p < a.pattern->col_start[j + 1]; ++p)
-      column[position[a.pattern->row_index[p]]] += a.values[a.source[p]];
+    for (int p = lower.col_start[j]; p < lower.col_start[j + 1]; ++p)
+      column[position[lower.row_index[p]]] += lower_values[p];
   }
 }
 
@@ -54,14 +56,23 @@ void add_to_update(const double* u, int m, const int* relative, int first_q, int
   }
 }
 
-[[noreturn]] void throw_not_positive_definite(int column) {
-  throw NotPositiveDefinite("SparseCholesky: matrix is not positive definite (pivot of column " +
-                            std::to_string(column) + " is not positive)");
-}
-
 }  // namespace
 
-void factorize_supernodal(const SymbolicFactor& f, const LowerValues& a,
+void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_values, FactorValues& factor) {
+  const std::vector<int>& source = analysis.lower.source;
+  factor.lower_values.resize(source.size());
+  for (size_t p = 0; p < source.size(); ++p) factor.lower_values[p] = a_values[source[p]];
+  eliminate_prefix(analysis.prefix, factor.lower_values, analysis.perm, factor.prefix_diagonal, factor.prefix_below);
+  factorize_supernodal(analysis.symbolic, analysis.lower.pattern, factor.lower_values.data(), analysis.perm,
+                       factor.supernodal);
+}
+
+void throw_not_positive_definite(int original_column) {
+  throw NotPositiveDefinite("SparseCholesky: matrix is not positive definite (pivot of column " +
+                            std::to_string(original_column) + " is not positive)");
+}
+
+void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const double* lower_values,
                           const std::vector<int>& original_column, std::vector<double>& values) {
   const int ns = f.num_supernodes();
   values.resize(f.value_start[ns]);
@@ -80,7 +91,7 @@ void factorize_supernodal(const SymbolicFactor& f, const LowerValues& a,
     double* block = values.data() + f.value_start[s];
     for (int i = 0; i < r; ++i) w.position[rows[i]] = i;
     std::fill(block, block + static_cast<long>(r) * k, 0.0);
-    gather_columns(a, first, k, r, w.position, block);
+    gather_columns(lower, lower_values, first, k, r, w.position, block);
 
     // Children's contributions to the pivot columns, before the dense factorization.
     const int* child = f.children.data() + f.child_start[s];

@@ -1,25 +1,35 @@
-// Multifrontal supernodal numeric factorization A = L L^T.
+// Numeric factorization A = L L^T: the simplicial prefix, then the supernodal rest
+// (multifrontal).
 #pragma once
 
 #include <vector>
 
-#include "sparse/pattern.h"
-#include "sparse/symbolic.h"
+#include "sparse/analysis.h"
 
 namespace meshik::sparse {
 
-// The permuted matrix's lower triangle with its values gathered from the caller's array.
-struct LowerValues {
-  const Pattern* pattern;  // column j: rows i >= j of P A P^T
-  const int* source;       // nnz(pattern): index of each entry's value in `values`
-  const double* values;    // the caller's CscMatrix::values
+// The factor's values.
+struct FactorValues {
+  std::vector<double> prefix_diagonal;  // prefix.size: L(u, u) of the simplicial prefix
+  std::vector<double> prefix_below;     // prefix.rows.size(): its entries below the diagonal
+  std::vector<double> supernodal;       // symbolic.value_start.back(): the supernodes' blocks
+  std::vector<double> lower_values;     // work: the permuted lower triangle's values
 };
 
-// Factorizes into `values` (sized symbolic.value_start.back()), supernode by supernode in
-// order: each supernode's block gathers A's columns and its children's update matrices, is
-// factored densely, and leaves its own update matrix on a stack for its parent.
-// original_column[k] names pivot k in the error. Throws NotPositiveDefinite.
-void factorize_supernodal(const SymbolicFactor& symbolic, const LowerValues& a,
+// a_values: the values of the matrix analysed by `analysis` (same pattern). Fills `factor`.
+// Throws NotPositiveDefinite naming the original column of the first failing pivot.
+void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_values, FactorValues& factor);
+
+// Factorizes the supernodal columns into `values` (sized symbolic.value_start.back()),
+// supernode by supernode in order: each supernode's block gathers its columns of the
+// permuted lower triangle (`lower`, values `lower_values`, global numbering) and its
+// children's update matrices, is factored densely, and leaves its own update matrix on a
+// stack for its parent. original_column[k] names pivot k in the error.
+// Throws NotPositiveDefinite.
+void factorize_supernodal(const SymbolicFactor& symbolic, const Pattern& lower, const double* lower_values,
                           const std::vector<int>& original_column, std::vector<double>& values);
+
+// Throws NotPositiveDefinite naming the original column whose pivot is not positive.
+[[noreturn]] void throw_not_positive_definite(int original_column);
 
 }  // namespace meshik::sparse

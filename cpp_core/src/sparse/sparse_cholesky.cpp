@@ -1,18 +1,12 @@
-// SparseCholesky: ties the ordering, the symbolic analysis, the numeric factorization and the
-// solves together.
+// SparseCholesky: ties the analysis, the numeric factorization and the solves together.
 #include "meshik/sparse_cholesky.h"
 
-#include <algorithm>
 #include <string>
 
-#include "sparse/column_counts.h"
-#include "sparse/elimination_tree.h"
+#include "sparse/analysis.h"
 #include "sparse/input_check.h"
 #include "sparse/numeric.h"
-#include "sparse/ordering.h"
-#include "sparse/permuted_matrix.h"
-#include "sparse/supernodes.h"
-#include "sparse/symbolic.h"
+#include "sparse/simd.h"
 #include "sparse/triangular_solve.h"
 
 namespace meshik {
@@ -22,10 +16,8 @@ using namespace sparse;
 struct SparseCholesky::Impl {
   // The analysed pattern, to check that factorize() gets the same one.
   std::vector<int> input_col_start, input_row_index;
-  std::vector<int> perm;   // perm[k]: original index of pivot k (fill-reducing, then postordered)
-  PermutedMatrix lower;    // lower triangle of P A P^T, with sources into A's values
-  SymbolicFactor symbolic;
-  std::vector<double> values;  // the supernodes' dense blocks
+  Analysis analysis;
+  FactorValues factor;
   bool factorized = false;
 };
 
@@ -39,23 +31,7 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   Impl fresh;
   fresh.input_col_start = a.col_start;
   fresh.input_row_index = a.row_index;
-  // Minimum degree, then a postorder of its elimination tree so that supernodes are runs of
-  // consecutive columns.
-  const std::vector<int> amd = minimum_degree_ordering(lower_pattern(a));
-  const Pattern upper = permute_symmetric(a, invert_permutation(amd), Triangle::kUpper).pattern;
-  const std::vector<int> amd_parent = elimination_tree(upper);
-  const std::vector<int> post = tree_postorder(amd_parent);
-  const std::vector<int> amd_counts = column_counts(transpose(upper), amd_parent, post);
-  const int n = a.cols;
-  fresh.perm.resize(n);
-  std::vector<int> counts(n);
-  for (int k = 0; k < n; ++k) {
-    fresh.perm[k] = amd[post[k]];
-    counts[k] = amd_counts[post[k]];
-  }
-  const std::vector<int> parent = relabel_tree(amd_parent, post);
-  fresh.lower = permute_symmetric(a, invert_permutation(fresh.perm), Triangle::kLower);
-  fresh.symbolic = symbolic_factor(fresh.lower.pattern, find_supernodes(parent, counts), counts);
+  fresh.analysis = analyze_pattern(a);
   *impl_ = std::move(fresh);
 }
 
@@ -65,12 +41,10 @@ void SparseCholesky::factorize(const CscMatrix& a) {
     throw std::invalid_argument(
         "SparseCholesky::factorize: the matrix pattern differs from the one given to analyze()");
   if (a.values.size() != a.row_index.size())
-    throw std::invalid_argument("SparseCholesky::factorize: values has " +
-                                std::to_string(a.values.size()) + " entries, expected " +
-                                std::to_string(a.row_index.size()));
+    throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
+                                " entries, expected " + std::to_string(a.row_index.size()));
   s.factorized = false;
-  const LowerValues values{&s.lower.pattern, s.lower.source.data(), a.values.data()};
-  factorize_supernodal(s.symbolic, values, s.perm, s.values);
+  factorize_numeric(s.analysis, a.values, s.factor);
   s.factorized = true;
 }
 
@@ -83,19 +57,32 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   const Impl& s = *impl_;
   if (!s.factorized) throw std::logic_error("SparseCholesky::solve: no successful factorize()");
   if (nrhs < 0) throw std::invalid_argument("SparseCholesky::solve: nrhs must be >= 0");
+  if (nrhs == 0) return;
   const int n = size();
+  const std::vector<int>& perm = s.analysis.perm;
   const size_t width = static_cast<size_t>(nrhs);
-  // Reused per thread: a fresh buffer would cost page faults on every solve.
+  // Permuted copy of b with rows padded to whole vectors. Reused per thread: a fresh buffer
+  // would cost page faults on every solve.
+  const int stride = round_up_to_lanes(nrhs);
   thread_local std::vector<double> x;
-  x.resize(static_cast<size_t>(n) * width);
-  for (int k = 0; k < n; ++k) std::copy_n(b + s.perm[k] * width, width, x.data() + k * width);
-  forward_solve(s.symbolic, s.values, x.data(), nrhs);
-  backward_solve(s.symbolic, s.values, x.data(), nrhs);
-  for (int k = 0; k < n; ++k) std::copy_n(x.data() + k * width, width, b + s.perm[k] * width);
+  x.resize(static_cast<size_t>(n) * stride);
+  for (int k = 0; k < n; ++k) {
+    const double* from = b + perm[k] * width;
+    double* to = x.data() + static_cast<size_t>(k) * stride;
+    for (int c = 0; c < nrhs; ++c) to[c] = from[c];
+    for (int c = nrhs; c < stride; ++c) to[c] = 0.0;
+  }
+  forward_solve(s.analysis, s.factor, x.data(), stride);
+  backward_solve(s.analysis, s.factor, x.data(), stride);
+  for (int k = 0; k < n; ++k) {
+    const double* from = x.data() + static_cast<size_t>(k) * stride;
+    double* to = b + perm[k] * width;
+    for (int c = 0; c < nrhs; ++c) to[c] = from[c];
+  }
 }
 
-int SparseCholesky::size() const { return static_cast<int>(impl_->perm.size()); }
+int SparseCholesky::size() const { return static_cast<int>(impl_->analysis.perm.size()); }
 
-long long SparseCholesky::factor_nonzeros() const { return impl_->symbolic.structural_nonzeros; }
+long long SparseCholesky::factor_nonzeros() const { return impl_->analysis.factor_nonzeros; }
 
 }  // namespace meshik

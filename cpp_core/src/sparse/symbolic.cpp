@@ -1,32 +1,70 @@
 #include "sparse/symbolic.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace meshik::sparse {
 
 namespace {
 
-// Appends the rows of supernode s (columns [first, end)) to f.rows: its own columns, then the
-// rows below `end` of A's columns and of its children's structures, sorted. mark: n entries,
-// set to s for rows already taken. first_child / next_child: the children lists of the
-// supernodal tree (-1 terminated).
-void collect_rows(const Pattern& lower, int s, int first, int end, const std::vector<int>& first_child,
-                  const std::vector<int>& next_child, SymbolicFactor& f, std::vector<int>& mark) {
-  for (int j = first; j < end; ++j) f.rows.push_back(j);
-  const size_t below = f.rows.size();
-  auto take = [&](int i) {
-    if (i >= end && mark[i] != s) {
-      mark[i] = s;
-      f.rows.push_back(i);
-    }
-  };
-  for (int j = first; j < end; ++j)
-    for (int p = lower.col_start[j]; p < lower.col_start[j + 1]; ++p) take(lower.row_index[p]);
-  for (int c = first_child[s]; c != -1; c = next_child[c]) {
-    const int k = f.first_column[c + 1] - f.first_column[c];
-    for (int p = f.row_start[c] + k; p < f.row_start[c + 1]; ++p) take(f.rows[p]);
+// Returns the supernode owning each column (n entries).
+std::vector<int> supernode_of_columns(const SymbolicFactor& f) {
+  std::vector<int> owner(f.n);
+  for (int s = 0; s + 1 < static_cast<int>(f.first_column.size()); ++s)
+    std::fill(owner.begin() + f.first_column[s], owner.begin() + f.first_column[s + 1], s);
+  return owner;
+}
+
+// Supernodal tree: the parent of s holds the elimination-tree parent of s's last column (the
+// columns of a supernode form a path in the tree, so that is its first row below).
+// supernode_of: the owner of each column.
+void supernodal_tree(const std::vector<int>& parent, const std::vector<int>& supernode_of, SymbolicFactor& f) {
+  const int ns = static_cast<int>(f.first_column.size()) - 1;
+  f.parent.assign(ns, -1);
+  f.child_start.assign(ns + 1, 0);
+  for (int s = 0; s < ns; ++s) {
+    const int above = parent[f.first_column[s + 1] - 1];
+    if (above == -1) continue;
+    f.parent[s] = supernode_of[above];
+    ++f.child_start[f.parent[s] + 1];
   }
-  std::sort(f.rows.begin() + below, f.rows.end());
+  for (int s = 0; s < ns; ++s) f.child_start[s + 1] += f.child_start[s];
+  f.children.resize(f.child_start[ns]);
+  std::vector<int> next(f.child_start.begin(), f.child_start.end() - 1);
+  for (int s = 0; s < ns; ++s)
+    if (f.parent[s] != -1) f.children[next[f.parent[s]]++] = s;
+}
+
+// Row indices of every supernode: its own columns, then the rows below. Row i lies below
+// supernode s iff L(i, j) != 0 for a column j of s, i.e. s is on the path of the supernodal
+// tree from the supernode of some j < i with A(i, j) != 0 up to (not including) i's own
+// supernode. Rows are taken in increasing order, so every list comes out sorted.
+void row_structures(const Pattern& graph, const SupernodePartition& partition,
+                    const std::vector<int>& supernode_of, SymbolicFactor& f) {
+  const int ns = static_cast<int>(partition.row_count.size());
+  f.row_start.assign(ns + 1, 0);
+  for (int s = 0; s < ns; ++s) f.row_start[s + 1] = f.row_start[s] + partition.row_count[s];
+  f.rows.resize(f.row_start[ns]);
+  std::vector<int> next(ns);  // next free slot of each supernode's list
+  for (int s = 0; s < ns; ++s) {
+    int p = f.row_start[s];
+    for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) f.rows[p++] = j;
+    next[s] = p;
+  }
+  std::vector<int> mark(ns, -1);
+  for (int i = 0; i < f.n; ++i) {
+    const int own = supernode_of[i];
+    for (int p = graph.col_start[i]; p < graph.col_start[i + 1]; ++p) {
+      const int j = graph.row_index[p];
+      if (j >= i) continue;
+      for (int s = supernode_of[j]; s != own && mark[s] != i; s = f.parent[s]) {
+        mark[s] = i;
+        f.rows[next[s]++] = i;
+      }
+    }
+  }
+  for (int s = 0; s < ns; ++s)
+    if (next[s] != f.row_start[s + 1]) throw std::logic_error("SparseCholesky: inconsistent supernode row count");
 }
 
 // Peak size of the update stack when supernodes are processed in order: a supernode's update
@@ -50,43 +88,24 @@ size_t peak_stack(const SymbolicFactor& f) {
 
 }  // namespace
 
-SymbolicFactor symbolic_factor(const Pattern& lower, const SupernodePartition& partition,
-                               const std::vector<int>& counts) {
+SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
+                               const std::vector<int>& counts, const SupernodePartition& partition,
+                               int column_offset) {
   SymbolicFactor f;
-  f.n = lower.n;
+  f.n = graph.n;
   f.first_column = partition.first_column;
-  const int ns = static_cast<int>(partition.row_count.size());
-  f.supernode_of.resize(f.n);
+  const std::vector<int> supernode_of = supernode_of_columns(f);
+  supernodal_tree(parent, supernode_of, f);
+  row_structures(graph, partition, supernode_of, f);
+  // Global numbering after the prefix.
+  f.n += column_offset;
+  for (int& c : f.first_column) c += column_offset;
+  for (int& i : f.rows) i += column_offset;
+  const int ns = f.num_supernodes();
+  f.value_start.assign(ns + 1, 0);
   for (int s = 0; s < ns; ++s)
-    std::fill(f.supernode_of.begin() + f.first_column[s], f.supernode_of.begin() + f.first_column[s + 1], s);
-  size_t total_rows = 0;
-  for (int r : partition.row_count) total_rows += r;
-  f.rows.reserve(total_rows);
-  f.row_start.assign(1, 0);
-  f.value_start.assign(1, 0);
-  f.parent.assign(ns, -1);
-  std::vector<int> first_child(ns, -1), next_child(ns, -1);
-  std::vector<int> mark(f.n, -1);
-  for (int s = 0; s < ns; ++s) {
-    const int first = f.first_column[s], end = f.first_column[s + 1];
-    collect_rows(lower, s, first, end, first_child, next_child, f, mark);
-    f.row_start.push_back(static_cast<int>(f.rows.size()));
-    const int r = f.row_start[s + 1] - f.row_start[s];
-    f.value_start.push_back(f.value_start[s] + static_cast<size_t>(r) * (end - first));
-    if (r > end - first) {
-      f.parent[s] = f.supernode_of[f.rows[f.row_start[s] + (end - first)]];
-      next_child[s] = first_child[f.parent[s]];
-      first_child[f.parent[s]] = s;
-    }
-  }
-  f.child_start.assign(ns + 1, 0);
-  for (int s = 0; s < ns; ++s)
-    if (f.parent[s] != -1) ++f.child_start[f.parent[s] + 1];
-  for (int s = 0; s < ns; ++s) f.child_start[s + 1] += f.child_start[s];
-  f.children.resize(f.child_start[ns]);
-  std::vector<int> next(f.child_start.begin(), f.child_start.end() - 1);
-  for (int s = 0; s < ns; ++s)
-    if (f.parent[s] != -1) f.children[next[f.parent[s]]++] = s;
+    f.value_start[s + 1] = f.value_start[s] + static_cast<size_t>(f.row_start[s + 1] - f.row_start[s]) *
+                                                  (f.first_column[s + 1] - f.first_column[s]);
   f.stack_size = peak_stack(f);
   for (int c : counts) f.structural_nonzeros += c;
   return f;

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "sparse/pattern.h"
+#include "sparse/symmetric_graph.h"
 #include "sparse/supernodes.h"
 
 namespace meshik::sparse {
@@ -23,17 +23,19 @@ struct SymbolicFactor {
   std::vector<int> parent;             // #S: supernode holding the first row below s, or -1
   std::vector<int> child_start;        // #S + 1 offsets into children
   std::vector<int> children;           // the children of each supernode, increasing
-  std::vector<int> supernode_of;       // n: the supernode owning each column
   size_t stack_size = 0;               // doubles needed by the multifrontal update stack
   int num_supernodes() const { return static_cast<int>(parent.size()); }
   long long structural_nonzeros = 0;   // nnz(L) without explicit zeros, diagonal included
 };
 
-// lower: the lower triangle of the postordered, permuted matrix (column j: rows i >= j)
-// partition: its supernodes; counts: its column counts (n entries)
+// graph: adjacency of the postordered, permuted matrix; parent: its elimination tree;
+// counts: its column counts (n entries each); partition: its supernodes.
+// column_offset: columns numbered before these (the simplicial prefix); the result numbers
+// columns and rows from it, so that n = column_offset + graph.n.
 // Returns the symbolic factor.
-SymbolicFactor symbolic_factor(const Pattern& lower, const SupernodePartition& partition,
-                               const std::vector<int>& counts);
+SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
+                               const std::vector<int>& counts, const SupernodePartition& partition,
+                               int column_offset);
 
 // Size in doubles of the packed lower triangle of an m by m update matrix.
 inline size_t packed_size(int m) { return static_cast<size_t>(m) * (m + 1) / 2; }

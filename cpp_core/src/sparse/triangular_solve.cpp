@@ -1,63 +1,247 @@
 #include "sparse/triangular_solve.h"
 
+#include "sparse/simd.h"
+
 namespace meshik::sparse {
 
-void forward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs) {
-  const long w = nrhs;
-  for (int s = 0; s < f.num_supernodes(); ++s) {
-    const int k = f.first_column[s + 1] - f.first_column[s];
-    const int r = f.row_start[s + 1] - f.row_start[s];
-    const int* rows = f.rows.data() + f.row_start[s];
-    const double* block = values.data() + f.value_start[s];
-    double* xs = x + f.first_column[s] * w;  // the supernode's k rows are consecutive
-    for (int j = 0; j < k; ++j) {
-      const double* lj = block + static_cast<long>(j) * r;
-      double* xj = xs + j * w;
-      const double inverse = 1.0 / lj[j];
-      for (long c = 0; c < w; ++c) xj[c] *= inverse;
-      for (int i = j + 1; i < k; ++i) {
-        double* xi = xs + i * w;
-        for (long c = 0; c < w; ++c) xi[c] -= lj[i] * xj[c];
-      }
+namespace {
+
+// The passes work on V vectors (V * kLanes right-hand sides) at a time, so each row's values
+// live in registers; x points at the chunk's first column and rows of x are `stride` apart.
+// Several rows (forward) or columns (backward) are carried together so that independent
+// multiply-adds hide each other's latency and every row of x is loaded once per group.
+
+// B rows of V vectors each.
+template <int V, int B>
+struct Rows {
+  Vec v[B][V];
+  void load_from(double* const* p) {
+    for (int b = 0; b < B; ++b)
+      for (int c = 0; c < V; ++c) v[b][c] = load(p[b] + c * kLanes);
+  }
+  void store_to(double* const* p) const {
+    for (int b = 0; b < B; ++b)
+      for (int c = 0; c < V; ++c) store(p[b] + c * kLanes, v[b][c]);
+  }
+  // row b -= a[b] * x for every b
+  void subtract_scaled(const double* a, const double* x) {
+    Vec xv[V];
+    for (int c = 0; c < V; ++c) xv[c] = load(x + c * kLanes);
+    for (int b = 0; b < B; ++b) {
+      const Vec s = broadcast(a[b]);
+      for (int c = 0; c < V; ++c) v[b][c] -= s * xv[c];
     }
-    for (int i = k; i < r; ++i) {
-      double* xi = x + rows[i] * w;
-      for (int j = 0; j < k; ++j) {
-        const double lij = block[static_cast<long>(j) * r + i];
-        const double* xj = xs + j * w;
-        for (long c = 0; c < w; ++c) xi[c] -= lij * xj[c];
-      }
+  }
+};
+
+// Solves L11 y = x_s in place for the supernode's k consecutive rows xs (L11: the top of the
+// column-major block, leading dimension r), row by row.
+template <int V>
+void diagonal_forward(const double* block, int k, int r, double* xs, long stride) {
+  for (int i = 0; i < k; ++i) {
+    double* xi = xs + i * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xi);
+    for (int j = 0; j < i; ++j) acc.subtract_scaled(block + static_cast<long>(j) * r + i, xs + j * stride);
+    const Vec inverse = broadcast(1.0 / block[static_cast<long>(i) * r + i]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xi);
+  }
+}
+
+// Solves L11^T y = x_s in place (see diagonal_forward), from the last row up.
+template <int V>
+void diagonal_backward(const double* block, int k, int r, double* xs, long stride) {
+  for (int j = k - 1; j >= 0; --j) {
+    const double* lj = block + static_cast<long>(j) * r;
+    double* xj = xs + j * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xj);
+    for (int i = j + 1; i < k; ++i) acc.subtract_scaled(lj + i, xs + i * stride);
+    const Vec inverse = broadcast(1.0 / lj[j]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xj);
+  }
+}
+
+// x_{rows[i + b]} -= L(i + b, :) y_s for b < B (L: block, k columns, leading dimension r).
+template <int V, int B>
+void update_rows_below(const double* block, int k, int r, int i, const int* rows, const double* xs,
+                       double* x, long stride) {
+  double* xi[B];
+  for (int b = 0; b < B; ++b) xi[b] = x + rows[i + b] * stride;
+  Rows<V, B> acc;
+  acc.load_from(xi);
+  for (int j = 0; j < k; ++j) acc.subtract_scaled(block + static_cast<long>(j) * r + i, xs + j * stride);
+  acc.store_to(xi);
+}
+
+// x_{j + b} -= sum over the rows i below the supernode of L(i, j + b) x_{rows[i]}, b < B.
+template <int V, int B>
+void update_from_rows_below(const double* block, int k, int r, int j, const int* rows, double* xs,
+                            const double* x, long stride) {
+  double* xj[B];
+  const double* lj[B];
+  for (int b = 0; b < B; ++b) {
+    xj[b] = xs + (j + b) * stride;
+    lj[b] = block + static_cast<long>(j + b) * r;
+  }
+  Rows<V, B> acc;
+  acc.load_from(xj);
+  for (int i = k; i < r; ++i) {
+    double l[B];
+    for (int b = 0; b < B; ++b) l[b] = lj[b][i];
+    acc.subtract_scaled(l, x + rows[i] * stride);
+  }
+  acc.store_to(xj);
+}
+
+constexpr int kGroup = 4;  // rows or columns carried together
+
+// Runs Body<B>::run(args...) for a group size B = count (1 <= count < kGroup).
+template <template <int> class Body, int B = 1, typename... Args>
+void with_group_size(int count, Args&&... args) {
+  if constexpr (B < kGroup) {
+    if (count == B) Body<B>::run(args...);
+    else with_group_size<Body, B + 1>(count, args...);
+  }
+}
+
+// update_rows_below / update_from_rows_below as group bodies for with_group_size.
+template <int V>
+struct RowsBelow {
+  template <int B>
+  struct Group {
+    static void run(const double* block, int k, int r, int i, const int* rows, const double* xs, double* x,
+                    long stride) {
+      update_rows_below<V, B>(block, k, r, i, rows, xs, x, stride);
+    }
+  };
+};
+template <int V>
+struct FromRowsBelow {
+  template <int B>
+  struct Group {
+    static void run(const double* block, int k, int r, int j, const int* rows, double* xs, const double* x,
+                    long stride) {
+      update_from_rows_below<V, B>(block, k, r, j, rows, xs, x, stride);
+    }
+  };
+};
+
+// Forward pass over the simplicial prefix for one chunk: x_u /= L(u, u), then
+// x_r -= L(r, u) x_u for its rows r.
+template <int V>
+void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
+  for (int u = 0; u < p.size; ++u) {
+    double* xu = x + u * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xu);
+    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xu);
+    for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t) {
+      double* xr = x + p.rows[t] * stride;
+      Rows<V, 1> row;
+      row.load_from(&xr);
+      row.subtract_scaled(&factor.prefix_below[t], xu);
+      row.store_to(&xr);
     }
   }
 }
 
-void backward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs) {
-  const long w = nrhs;
+// Backward pass over the simplicial prefix (last column first) for one chunk:
+// x_u = (x_u - sum_r L(r, u) x_r) / L(u, u).
+template <int V>
+void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
+  for (int u = p.size - 1; u >= 0; --u) {
+    double* xu = x + u * stride;
+    Rows<V, 1> acc;
+    acc.load_from(&xu);
+    for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t)
+      acc.subtract_scaled(&factor.prefix_below[t], x + p.rows[t] * stride);
+    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
+    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.store_to(&xu);
+  }
+}
+
+// Forward pass (prefix, then supernodes) for one chunk.
+template <int V>
+void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+  prefix_forward<V>(analysis.prefix, factor, x, stride);
+  const SymbolicFactor& f = analysis.symbolic;
+  const double* values = factor.supernodal.data();
+  for (int s = 0; s < f.num_supernodes(); ++s) {
+    const int k = f.first_column[s + 1] - f.first_column[s];
+    const int r = f.row_start[s + 1] - f.row_start[s];
+    const int* rows = f.rows.data() + f.row_start[s];
+    const double* block = values + f.value_start[s];
+    double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
+    diagonal_forward<V>(block, k, r, xs, stride);
+    int i = k;
+    for (; i + kGroup <= r; i += kGroup) update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
+    with_group_size<RowsBelow<V>::template Group>(r - i, block, k, r, i, rows, xs, x, stride);
+  }
+}
+
+// Backward pass (supernodes from the last, then the prefix) for one chunk.
+template <int V>
+void backward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+  const SymbolicFactor& f = analysis.symbolic;
+  const double* values = factor.supernodal.data();
   for (int s = f.num_supernodes() - 1; s >= 0; --s) {
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
     const int* rows = f.rows.data() + f.row_start[s];
-    const double* block = values.data() + f.value_start[s];
-    double* xs = x + f.first_column[s] * w;
-    for (int i = k; i < r; ++i) {
-      const double* xi = x + rows[i] * w;
-      for (int j = 0; j < k; ++j) {
-        const double lij = block[static_cast<long>(j) * r + i];
-        double* xj = xs + j * w;
-        for (long c = 0; c < w; ++c) xj[c] -= lij * xi[c];
-      }
-    }
-    for (int j = k - 1; j >= 0; --j) {
-      const double* lj = block + static_cast<long>(j) * r;
-      double* xj = xs + j * w;
-      for (int i = j + 1; i < k; ++i) {
-        const double* xi = xs + i * w;
-        for (long c = 0; c < w; ++c) xj[c] -= lj[i] * xi[c];
-      }
-      const double inverse = 1.0 / lj[j];
-      for (long c = 0; c < w; ++c) xj[c] *= inverse;
-    }
+    const double* block = values + f.value_start[s];
+    double* xs = x + f.first_column[s] * stride;
+    int j = 0;
+    for (; j + kGroup <= k; j += kGroup) update_from_rows_below<V, kGroup>(block, k, r, j, rows, xs, x, stride);
+    with_group_size<FromRowsBelow<V>::template Group>(k - j, block, k, r, j, rows, xs, x, stride);
+    diagonal_backward<V>(block, k, r, xs, stride);
   }
+  prefix_backward<V>(analysis.prefix, factor, x, stride);
+}
+
+// Most vectors per chunk: 16 right-hand sides.
+constexpr int kMaxVectors = 16 / kLanes;
+
+template <int V>
+struct Forward {
+  // Runs forward_chunk<vectors> (vectors <= V).
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
+    if (vectors == V) forward_chunk<V>(a, factor, x, stride);
+    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, x, stride);
+  }
+};
+
+template <int V>
+struct Backward {
+  // Runs backward_chunk<vectors> (vectors <= V).
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
+    if (vectors == V) backward_chunk<V>(a, factor, x, stride);
+    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, x, stride);
+  }
+};
+
+// Runs Pass on chunks of at most kMaxVectors vectors covering the stride.
+template <template <int> class Pass>
+void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int stride) {
+  for (int c0 = 0; c0 < stride; c0 += kMaxVectors * kLanes) {
+    const int vectors = (stride - c0) / kLanes < kMaxVectors ? (stride - c0) / kLanes : kMaxVectors;
+    Pass<kMaxVectors>::dispatch(vectors, a, factor, x + c0, stride);
+  }
+}
+
+}  // namespace
+
+void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
+  by_chunks<Forward>(analysis, factor, x, stride);
+}
+
+void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
+  by_chunks<Backward>(analysis, factor, x, stride);
 }
 
 }  // namespace meshik::sparse

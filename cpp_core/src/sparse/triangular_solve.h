@@ -1,16 +1,17 @@
-// Triangular solves with the supernodal factor, many right-hand sides at once.
+// Triangular solves with the factor (simplicial prefix, then supernodes), many right-hand
+// sides at once.
 #pragma once
 
-#include <vector>
-
-#include "sparse/symbolic.h"
+#include "sparse/analysis.h"
+#include "sparse/numeric.h"
 
 namespace meshik::sparse {
 
-// x: n by nrhs row-major, in the factor's (permuted) order. Overwrites x with L^{-1} x.
-void forward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs);
+// x: n rows of `stride` doubles (stride a multiple of kLanes, see simd.h), in the factor's
+// (permuted) order; every column of x is a right-hand side. Overwrites x with L^{-1} x.
+void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride);
 
-// x: n by nrhs row-major, in the factor's order. Overwrites x with L^{-T} x.
-void backward_solve(const SymbolicFactor& f, const std::vector<double>& values, double* x, int nrhs);
+// As forward_solve, overwrites x with L^{-T} x.
+void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride);
 
 }  // namespace meshik::sparse

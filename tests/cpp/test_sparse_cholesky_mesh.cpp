@@ -1,0 +1,119 @@
+// SparseCholesky on MeshIK's own matrices: the normal matrix G'^T G' of the deformation
+// gradients (4th-vertex unknowns kept and eliminated) of a generated sphere and of the real
+// horse, and the horse's graph Laplacian plus a shift.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "../../bench/normal_matrix.h"
+#include "../../bench/obj_reader.h"
+#include "../../bench/sphere_mesh.h"
+#include "meshik/sparse_cholesky.h"
+#include "sparse_test_matrices.h"
+
+using meshik::CscMatrix;
+using meshik::SparseCholesky;
+using namespace meshik_test;
+
+namespace {
+
+// The horse's rest mesh from the shared data, or an empty mesh when it is absent.
+meshik_bench::TriangleMesh horse_or_empty() {
+  const char* env = std::getenv("MESHIK_SHARED_DATA");
+  const std::string path = std::string(env ? env : "../shared/data") + "/horse-poses/reference.obj";
+  if (!std::filesystem::exists(path)) return {};
+  return meshik_bench::read_obj(path);
+}
+
+// Factors `a`, solves with 15 random right-hand sides; expects a small residual. Returns the
+// solution (n by 15 row-major) for the right-hand sides `b`.
+std::vector<double> solve_and_check(const CscMatrix& a, const std::vector<double>& b, int nrhs) {
+  SparseCholesky chol;
+  chol.compute(a);
+  std::vector<double> x = b;
+  chol.solve(x.data(), nrhs);
+  EXPECT_LT(relative_residual(a, x, b, nrhs), 1e-10);
+  return x;
+}
+
+// The kept form's vertex unknowns solve the eliminated form (its Schur complement) when the
+// 4th-vertex right-hand sides are zero.
+void expect_forms_agree(const meshik_bench::TriangleMesh& mesh, int handles) {
+  const std::vector<int> h = meshik_bench::spread_handles(mesh.num_vertices(), handles);
+  const CscMatrix kept = meshik_bench::deformation_normal_matrix(mesh, h, true);
+  const CscMatrix eliminated = meshik_bench::deformation_normal_matrix(mesh, h, false);
+  const int nrhs = 15, n = eliminated.rows;
+  ASSERT_EQ(kept.rows, n + mesh.num_triangles());
+  const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 42);
+  std::vector<double> b_kept(static_cast<size_t>(kept.rows) * nrhs, 0.0);
+  std::copy(b.begin(), b.end(), b_kept.begin());
+  const std::vector<double> x = solve_and_check(eliminated, b, nrhs);
+  const std::vector<double> x_kept = solve_and_check(kept, b_kept, nrhs);
+  double scale = 0.0, worst = 0.0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    scale = std::max(scale, std::abs(x[k]));
+    worst = std::max(worst, std::abs(x[k] - x_kept[k]));
+  }
+  EXPECT_LT(worst, 1e-8 * scale);
+}
+
+}  // namespace
+
+TEST(SparseCholeskyMesh, SphereNormalMatrixBothForms) {
+  expect_forms_agree(meshik_bench::geodesic_sphere(8), 12);
+}
+
+TEST(SparseCholeskyMesh, FourthVerticesAddOnlyTheirOwnColumns) {
+  const auto mesh = meshik_bench::geodesic_sphere(10);
+  const std::vector<int> h = meshik_bench::spread_handles(mesh.num_vertices(), 16);
+  SparseCholesky kept, eliminated;
+  kept.analyze(meshik_bench::deformation_normal_matrix(mesh, h, true));
+  eliminated.analyze(meshik_bench::deformation_normal_matrix(mesh, h, false));
+  // Each 4th vertex adds its own column to L (diagonal + its free corners) and no fill.
+  long long own_columns = 0;
+  for (int c : mesh.triangles) own_columns += std::find(h.begin(), h.end(), c) == h.end();
+  own_columns += mesh.num_triangles();
+  EXPECT_EQ(kept.factor_nonzeros(), eliminated.factor_nonzeros() + own_columns);
+}
+
+TEST(SparseCholeskyMesh, HorseNormalMatrixBothForms) {
+  const auto horse = horse_or_empty();
+  if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";
+  expect_forms_agree(horse, 20);
+}
+
+TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
+  const auto horse = horse_or_empty();
+  if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";
+  // Lower triangle of L + 0.01 I for the horse's vertex graph.
+  const int n = horse.num_vertices();
+  std::vector<std::vector<int>> below(n);
+  for (int t = 0; t < horse.num_triangles(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const int u = horse.triangles[3 * t + c], v = horse.triangles[3 * t + (c + 1) % 3];
+      below[std::min(u, v)].push_back(std::max(u, v));
+    }
+  CscMatrix a;
+  a.rows = a.cols = n;
+  a.col_start.push_back(0);
+  std::vector<double> degree(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    std::sort(below[j].begin(), below[j].end());
+    below[j].erase(std::unique(below[j].begin(), below[j].end()), below[j].end());
+    for (int i : below[j]) degree[i] += 1.0, degree[j] += 1.0;
+  }
+  for (int j = 0; j < n; ++j) {
+    a.row_index.push_back(j);
+    a.values.push_back(degree[j] + 0.01);
+    for (int i : below[j]) {
+      a.row_index.push_back(i);
+      a.values.push_back(-1.0);
+    }
+    a.col_start.push_back(static_cast<int>(a.row_index.size()));
+  }
+  const int nrhs = 16;
+  solve_and_check(a, random_values(static_cast<size_t>(n) * nrhs, 9), nrhs);
+}
