@@ -123,12 +123,12 @@ def simplify_openmesh(meshes: ExampleMeshes, target_triangles: int, handles: np.
     """OpenMesh decimation driven by every pose, handles locked (see module doc)."""
     from meshik import _core
 
-    result = _core.decimate(meshes.rest, meshes.faces, list(meshes.examples), handles, target_triangles)
-    kept = np.asarray(result["kept_vertices"], dtype=np.int64)
-    simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(result["faces"], dtype=np.int64),
+    kept, faces, vertex_map = _core.decimate(meshes.rest, meshes.faces.astype(np.int32), list(meshes.examples),
+                                             handles.astype(np.int32), target_triangles)
+    kept = np.asarray(kept, dtype=np.int64)
+    simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(faces, dtype=np.int64),
                          examples=tuple(example[kept] for example in meshes.examples))
-    return SimplifiedMeshes(meshes=simplified, vertex_map=np.asarray(result["vertex_map"], dtype=np.int64),
-                            source_vertex=kept)
+    return SimplifiedMeshes(meshes=simplified, vertex_map=np.asarray(vertex_map, dtype=np.int64), source_vertex=kept)
 
 
 def remap_handles(simplified: Optional[SimplifiedMeshes], handles: np.ndarray):
