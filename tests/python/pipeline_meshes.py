@@ -43,6 +43,26 @@ def bend(vertices: np.ndarray, degrees: float, axis: str = "y", length: float = 
     return bent
 
 
+def grid(size: int = 20, extent: float = 1.0):
+    """(size*size by 3 vertices, triangles) of a flat square grid in the xy plane, z = 0."""
+    xs = np.linspace(0.0, extent, size)
+    vertices = np.array([[x, y, 0.0] for y in xs for x in xs])
+    faces = []
+    for row in range(size - 1):
+        for col in range(size - 1):
+            a = row * size + col
+            faces += [[a, a + 1, a + size + 1], [a, a + size + 1, a + size]]
+    return vertices, np.array(faces)
+
+
+def bump(vertices: np.ndarray, center, height: float, width: float) -> np.ndarray:
+    """The vertices raised along z by a Gaussian bump (height at `center` in xy, std. dev. `width`)."""
+    moved = vertices.copy()
+    distance2 = ((vertices[:, :2] - np.asarray(center)) ** 2).sum(axis=1)
+    moved[:, 2] += height * np.exp(-distance2 / (2 * width ** 2))
+    return moved
+
+
 def write_obj(path: pathlib.Path, vertices: np.ndarray, faces: np.ndarray) -> pathlib.Path:
     """Write a triangle mesh as OBJ (1-based indices); returns the path."""
     lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in vertices]
