@@ -1,16 +1,18 @@
 """Many jobs at once: each constraint file is posed in its own worker process.
 
 A job that fails (bad input, or even a crashed process) is reported with its reason and does
-not stop the others. Each job writes to <out>/<job name>/ through pose_job, so its outputs are
-complete or absent, and a job already complete for the same inputs and options is skipped.
-A summary of all jobs is written to <out>/batch-report.json.
+not stop the others. Workers are plain `python -m meshik.batch_worker` processes (not
+multiprocessing), so they work whatever script started the batch. Each job writes to
+<out>/<job name>/ through pose_job, so its outputs are complete or absent, and a job already
+complete for the same inputs and options is skipped. <out>/batch-report.json lists every job.
 """
 import json
-import multiprocessing
 import os
+import subprocess
+import sys
+import tempfile
 import time
 from dataclasses import asdict, dataclass
-from multiprocessing.connection import wait
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, TextIO
 
@@ -18,6 +20,7 @@ from meshik.errors import PipelineError
 from meshik.progress import Progress
 
 SUMMARY_NAME = "batch-report.json"
+_POLL_SECONDS = 0.05
 
 
 @dataclass
@@ -50,81 +53,79 @@ def run_batch(constraint_paths: Sequence, out_dir, jobs: int = 1, quiet: bool = 
               **job_options: Any) -> List[JobOutcome]:
     """Run pose_job for every constraint file with up to `jobs` worker processes at a time.
 
-    job_options: keyword arguments of pose_job (simplify, simplifier, formats, feature_space,
-    quantization_bits, force). Returns one JobOutcome per file, in the order given; failures are
-    printed even when quiet.
+    job_options: JSON-friendly keyword arguments of pose_job (simplify, simplifier, formats,
+    feature_space, quantization_bits, force). Returns one JobOutcome per file, in the order given;
+    failures are printed even when quiet.
     """
-    import sys
-
     stream = stream or sys.stderr
     paths = [Path(p) for p in constraint_paths]
     out_dir = Path(out_dir)
     names = job_names(paths)
-    context = multiprocessing.get_context("spawn")
     progress = Progress("batch", len(paths), quiet=quiet, stream=stream)
     outcomes: List[Optional[JobOutcome]] = [None] * len(paths)
     waiting = list(range(len(paths)))
-    running: Dict[int, Any] = {}
+    running: Dict[int, _Worker] = {}
     try:
         while waiting or running:
             while waiting and len(running) < max(1, jobs):
                 index = waiting.pop(0)
-                receiver, sender = context.Pipe(duplex=False)
-                process = context.Process(target=_worker, args=(str(paths[index]), str(out_dir / names[index]), job_options, sender),
-                                          name=f"meshik-{names[index]}", daemon=True)
-                process.start()
-                sender.close()
-                running[index] = (process, receiver, time.perf_counter())
-            ready = wait([r for _, r, _ in running.values()] + [p.sentinel for p, _, _ in running.values()])
-            for index, (process, receiver, started) in list(running.items()):
-                if receiver not in ready and process.sentinel not in ready:
+                running[index] = _Worker(paths[index], out_dir / names[index], job_options)
+            time.sleep(_POLL_SECONDS)
+            for index, worker in list(running.items()):
+                if worker.process.poll() is None:
                     continue
-                outcome = _collect(receiver, process, names[index], paths[index], out_dir / names[index], started)
-                outcomes[index] = outcome
+                outcomes[index] = worker.outcome(names[index])
                 del running[index]
-                _announce(outcome, quiet, stream, clear_line=progress.interactive)
+                _announce(outcomes[index], quiet, stream, clear_line=progress.interactive)
                 progress.advance()
     except KeyboardInterrupt:
-        for process, _, _ in running.values():
-            process.terminate()
+        for worker in running.values():
+            worker.stop()
         raise
     progress.finish()
     _write_summary(out_dir, outcomes, stream)
     return outcomes
 
 
-def _worker(constraints: str, destination: str, job_options: Dict[str, Any], sender) -> None:
-    """Worker process body: run one job, send (status, reason, frames) back through the pipe."""
-    from meshik.pipeline import pose_job
+class _Worker:
+    """One job running in its own Python process; its result comes back as JSON in a temporary file."""
 
-    try:
-        report = pose_job(constraints, destination, quiet=True, **job_options)
-        sender.send(("skipped" if report.get("skipped") else "done", None, report.get("frame_count", 0)))
-    except ValueError as error:  # PipelineError and the core's InputError: bad input, message says why
-        sender.send(("failed", str(error), 0))
-    except Exception as error:  # noqa: BLE001 - any other failure is reported with its type, not raised
-        sender.send(("failed", f"{type(error).__name__}: {error}", 0))
-    finally:
-        sender.close()
+    def __init__(self, constraints: Path, destination: Path, job_options: Dict[str, Any]):
+        self.constraints, self.destination = constraints, destination
+        self.started = time.perf_counter()
+        self.folder = tempfile.TemporaryDirectory(prefix="meshik-job-")
+        self.result = Path(self.folder.name) / "result.json"
+        self.log = open(Path(self.folder.name) / "stderr.txt", "w+b")
+        spec = {"constraints": str(constraints), "destination": str(destination), "options": job_options,
+                "result": str(self.result)}
+        package_root = str(Path(__file__).resolve().parent.parent)
+        search_path = os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")]))
+        self.process = subprocess.Popen([sys.executable, "-m", "meshik.batch_worker", json.dumps(spec)],
+                                        stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self.log,
+                                        env=dict(os.environ, PYTHONPATH=search_path))
 
-
-def _collect(receiver, process, name: str, constraints: Path, destination: Path, started: float) -> JobOutcome:
-    """The outcome of a finished worker: its message, or "worker process died" when it sent none."""
-    message = None
-    if receiver.poll():
+    def outcome(self, name: str) -> JobOutcome:
+        """The finished job's outcome: its result file, or why the process ended without one."""
+        seconds = time.perf_counter() - self.started
         try:
-            message = receiver.recv()
-        except EOFError:
-            message = None
-    process.join()
-    receiver.close()
-    seconds = time.perf_counter() - started
-    if message is None:
-        code = process.exitcode
-        how = f"was killed by signal {-code}" if code is not None and code < 0 else f"exited with status {code}"
-        return JobOutcome(name, str(constraints), str(destination), "failed", f"worker process {how} without a result", seconds)
-    status, reason, frames = message
-    return JobOutcome(name, str(constraints), str(destination), status, reason, seconds, frames)
+            status, reason, frames = json.loads(self.result.read_text())
+        except (OSError, ValueError):
+            code = self.process.returncode
+            how = f"was killed by signal {-code}" if code < 0 else f"exited with status {code}"
+            self.log.seek(0)
+            last = [line for line in self.log.read().decode(errors="replace").splitlines() if line.strip()][-1:]
+            status, reason, frames = "failed", f"worker process {how} without a result" + (f": {last[0]}" if last else ""), 0
+        finally:
+            self.log.close()
+            self.folder.cleanup()
+        return JobOutcome(name, str(self.constraints), str(self.destination), status, reason, seconds, frames)
+
+    def stop(self) -> None:
+        """Interrupt the worker (it discards its staged outputs) and wait for it."""
+        self.process.terminate()
+        self.process.wait()
+        self.log.close()
+        self.folder.cleanup()
 
 
 def _announce(outcome: JobOutcome, quiet: bool, stream: TextIO, clear_line: bool) -> None:
