@@ -225,12 +225,12 @@ def _natural_key(path: Path):
 def _parse_handles(value: Any) -> Dict[str, HandleSpec]:
     """Handle groups by name, in the file's order: vertex-index lists or {near, radius} regions."""
     groups = expect_object(value, "handles")
-    if not groups:
-        raise SchemaViolation("handles", "expected at least one handle group")
     handles: Dict[str, HandleSpec] = {}
     owner: Dict[int, str] = {}
     for name, spec in groups.items():
         path = child("handles", name)
+        if name.startswith("_"):
+            continue  # the user's own annotation
         if not name.strip():
             raise SchemaViolation(path, "handle group names must not be empty")
         if isinstance(spec, dict):
@@ -249,6 +249,8 @@ def _parse_handles(value: Any) -> Dict[str, HandleSpec]:
                 raise SchemaViolation(child(path, i), f"vertex {index} is already a handle {where}")
             owner[index] = name
         handles[name] = IndexHandle(vertices=tuple(indices))
+    if not handles:
+        raise SchemaViolation("handles", "expected at least one handle group")
     return handles
 
 
@@ -269,7 +271,7 @@ def _parse_frames(value: Any, handles: Dict[str, HandleSpec]) -> Tuple[Frame, ..
         seen[name] = number
         targets = expect_object(frame.get("targets", {}), child(path, "targets"))
         parsed.append(Frame(name=name, targets={group: _parse_target(spec, handles, group, child(child(path, "targets"), group))
-                                                for group, spec in targets.items()}))
+                                                for group, spec in targets.items() if not group.startswith("_")}))
     return tuple(parsed)
 
 

@@ -3,6 +3,7 @@ path, and a fuzzer that feeds the loader random and mutated documents."""
 import copy
 import json
 import math
+import pathlib
 
 import numpy as np
 import pytest
@@ -67,6 +68,29 @@ def test_full_document_loads_and_resolves(tube_set, document):
     # rotate about an explicit centre, then translate
     flipped = rest[ring] * [1, -1, -1] + [1, 2, 3]
     np.testing.assert_allclose(resolved.targets[3, ring_rows], flipped, atol=1e-12)
+
+
+def test_readme_example_is_valid(tmp_path, tube_set):
+    """The full example of pipeline/README.md loads (with stand-in mesh files at its paths)."""
+    readme = (pathlib.Path(__file__).resolve().parents[2] / "pipeline" / "README.md").read_text()
+    example = readme.split("A full example:")[1].split("```json")[1].split("```")[0]
+    (tmp_path / "horse").mkdir()
+    for name in ("reference", "1", "2", "3"):
+        (tmp_path / "horse" / f"{name}.obj").write_bytes(tube_set["rest"].read_bytes())
+    loaded = constraints.loads(example, tmp_path / "shot.json")
+    assert list(loaded.handles) == ["head", "tail", "hooves"] and len(loaded.frames) == 4
+    assert loaded.fps == 24 and loaded.solver_options()["max_iterations"] == 30
+
+
+def test_underscore_members_are_notes(tube_set, document):
+    document["_comment"] = "shot 12, take 3"
+    document["handles"]["_spare"] = "anything"
+    document["frames"][0]["targets"]["_why"] = {"any": "thing"}
+    document["frames"][0]["_note"] = 1
+    assert list(load_document(tube_set, document).handles) == ["bottom", "top", "ring"]
+    document["handles"] = {"_only": [1]}
+    with pytest.raises(ConstraintError, match="handles: expected at least one handle group"):
+        load_document(tube_set, document)
 
 
 def test_missing_group_keeps_previous_targets(tube_set, document):
