@@ -123,6 +123,9 @@ def simplify_openmesh(meshes: ExampleMeshes, target_triangles: int, handles: np.
     """OpenMesh decimation driven by every pose, handles locked (see module doc)."""
     from meshik import _core
 
+    if not hasattr(_core, "decimate"):
+        raise PipelineError("this build of meshik._core has no OpenMesh decimator (bind_decimate not registered): "
+                            "use --simplifier fast")
     kept, faces, vertex_map = _core.decimate(meshes.rest, meshes.faces.astype(np.int32), list(meshes.examples),
                                              handles.astype(np.int32), target_triangles)
     kept = np.asarray(kept, dtype=np.int64)
