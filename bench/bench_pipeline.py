@@ -51,7 +51,7 @@ def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Pat
 
     rest_path, example_paths = horse_files(horse)
     rest, _ = load_mesh(rest_path)
-    frames = {p.stem: load_mesh(p)[0] for p in sorted(gallop.glob("*.obj"))}
+    frames = {p.stem: load_mesh(p)[0] for p in sorted(gallop.glob("*.obj")) if p.stem.isdigit()}
     path = scratch / "gallop.json"
     path.write_text(json.dumps(tracking_document(path, rest_path, example_paths, frames, farthest_point_handles(rest, 12))))
 

@@ -1,5 +1,5 @@
 // meshik._core.decimate: the OpenMesh decimator (cpp_core/decimate) for Python, numpy in and out.
-// Registered by bind_decimate(), which the module definition (core_module.cpp) calls.
+// Registered by bind_decimate() (decimate_module.h), which the module definition (core_module.cpp) calls.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/vector.h>
@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "decimate_module.h"
 #include "meshik/decimate.h"
 
 namespace nb = nanobind;

@@ -62,7 +62,9 @@ def test_report_records_fit_weights_timings_and_sizes(shot, tmp_path):
     assert on_disk == {k: v for k, v in report.items() if k != "skipped"}
     assert report["solver"]["feature_space"] == "linear" and report["solver"]["handle_vertices"] == 20
     assert report["handle_fit_error"]["max"] < 1e-8  # handles are hard constraints
-    for frame in report["frames"]:
+    first, *others = report["frames"]
+    assert first["weights"] == [0.0, 0.0]  # frame 1 asks for the rest pose: nothing to do
+    for frame in others:
         assert len(frame["weights"]) == 2 and frame["iterations"] >= 1 and frame["solve_seconds"] > 0
     # the bend grows frame by frame: so does the weight of the example bent the same way (about y)
     first_example = [frame["weights"][0] for frame in report["frames"]]
