@@ -56,7 +56,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if not 1 <= quantization_bits <= 30:
         raise PipelineError(f"quantization bits must be between 1 and 30, got {quantization_bits}")
     check_writable(out_dir)
-    solver_options = dict(constraint_set.solver_options(), **({"feature_space": feature_space} if feature_space else {}))
+    solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
+    if feature_space:
+        solver_options["feature_space"] = feature_space
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits)
     if not force and is_complete(out_dir, key):
         return dict(read_report(out_dir), skipped=True)
@@ -86,9 +88,10 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
 
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     grid = animation_grid(np.concatenate([posed.vertices, posed_meshes.rest[None]]), quantization_bits)
+    writing = Progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
     with StagedOutput(out_dir) as staged:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
-                simplified is not None, grid, constraint_set.fps, formats, Progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream))
+                simplified is not None, grid, constraint_set.fps, formats, writing)
         clock.lap("export")
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,

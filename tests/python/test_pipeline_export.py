@@ -1,47 +1,11 @@
 """Exporters checked by real clients: Google's draco_decoder (Debian `draco`) and DracoPy decode the
 .drc files, the Khronos glTF Validator and trimesh / pygltflib read the .glb."""
-import json
-import pathlib
-import shutil
-import subprocess
-
 import numpy as np
 import pytest
 
 from meshik import export_draco, export_gltf
-from meshik.meshio import load_mesh
+from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import bend, tube
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-VALIDATOR = ROOT / "node_modules" / "gltf-validator"
-
-
-def draco_decoder() -> str:
-    """Google's draco_decoder from the Debian package (not a copy bundled with a Python wheel)."""
-    path = "/usr/bin/draco_decoder" if pathlib.Path("/usr/bin/draco_decoder").exists() else shutil.which("draco_decoder")
-    if path is None:
-        pytest.fail("draco_decoder not found: install the Debian package `draco` (scripts/setup.sh system)")
-    return path
-
-
-def validate_gltf(path: pathlib.Path) -> dict:
-    """The Khronos glTF Validator's report (issues) for a .glb, run with node."""
-    if not VALIDATOR.is_dir():
-        pytest.fail(f"{VALIDATOR} missing: run scripts/setup.sh node (npm ci)")
-    script = ("const fs = require('fs'); const v = require(process.argv[1]);"
-              "v.validateBytes(new Uint8Array(fs.readFileSync(process.argv[2])), {maxIssues: 1000})"
-              ".then(r => console.log(JSON.stringify(r.issues))).catch(e => { console.error(e); process.exit(2); });")
-    done = subprocess.run(["node", "-e", script, str(VALIDATOR), str(path)], capture_output=True, text=True, check=True)
-    return json.loads(done.stdout)
-
-
-def validate_and_check_no_errors(path: pathlib.Path) -> dict:
-    """Validate a .glb and fail on any error or warning (infos about KHR_draco being unchecked are fine)."""
-    issues = validate_gltf(path)
-    problems = [m for m in issues["messages"] if m["severity"] <= 1]
-    assert issues["numErrors"] == 0 and issues["numWarnings"] == 0, problems
-    return issues
-
 
 @pytest.fixture(scope="module")
 def animation():
@@ -67,9 +31,7 @@ def test_drc_decoded_by_draco_decoder_and_dracopy(animation, tmp_path):
         original = {tuple(sorted(t)) for t in animation["faces"].tolist()}
         assert {tuple(sorted(t)) for t in rows[decoded.faces].tolist()} == original
         # Google's decoder reads the file too and agrees with DracoPy vertex for vertex
-        ply = tmp_path / f"{k}.ply"
-        subprocess.run([draco_decoder(), "-i", str(path), "-o", str(ply)], check=True, capture_output=True)
-        vertices, faces = load_mesh(ply)
+        vertices, faces = decode_with_draco_decoder(path, tmp_path)
         np.testing.assert_allclose(vertices, decoded.vertices, atol=1e-6)
         np.testing.assert_array_equal(faces, decoded.faces)
         orders.append(decoded.vertex_ids)

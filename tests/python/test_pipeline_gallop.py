@@ -10,6 +10,7 @@ from meshik.meshio import load_mesh
 from meshik.pipeline import pose_job
 from meshik.tracking import farthest_point_handles, tracking_document
 from conftest import example_set_files
+from pipeline_clients import validate_and_check_no_errors
 
 
 @pytest.fixture(scope="module")
@@ -31,6 +32,7 @@ def test_gallop_end_to_end(gallop, tmp_path):
     report = pose_job(gallop["path"], tmp_path, formats=("drc", "glb"), quiet=True)
     assert report["frame_count"] == 48 and report["solver"]["handle_vertices"] == 12
     assert report["handle_fit_error"]["max"] < 1e-8
+    validate_and_check_no_errors(tmp_path / "gallop.glb")
     diagonal = np.linalg.norm(np.ptp(gallop["rest"], axis=0))
     errors, unposed = [], []
     for name, truth in gallop["frames"].items():

@@ -4,12 +4,14 @@ import json
 
 import numpy as np
 import pytest
+import trimesh
 
 import meshik
 from meshik import constraints, export_draco, export_gltf
 from meshik.meshio import load_example_set, load_mesh
 from meshik.pipeline import pose_job
 from meshik.simplify import simplify
+from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 
 
@@ -37,6 +39,8 @@ def solver_reference(path, feature_space="nonlinear"):
 
 
 def test_outputs_decode_to_the_solver_result(shot, tmp_path):
+    """DracoPy and Google's draco_decoder decode every .drc, the glTF Validator and trimesh accept
+    the .glb, and all of them give back the solver's own positions."""
     out = tmp_path / "out"
     report = pose_job(shot["path"], out, formats=("drc", "glb", "ply"), quiet=True)
     expected, resolved = solver_reference(shot["path"])
@@ -44,12 +48,19 @@ def test_outputs_decode_to_the_solver_result(shot, tmp_path):
     assert report["frame_count"] == 5 and not report["skipped"]
     assert step == pytest.approx(report["quantization"]["range"] / (2 ** 14 - 1))
     for k, name in enumerate(resolved.frame_names):
-        decoded = export_draco.decode((out / "frames" / f"{name}.drc").read_bytes())
+        drc = out / "frames" / f"{name}.drc"
+        decoded = export_draco.decode(drc.read_bytes())
         assert decoded.method == export_draco.EDGEBREAKER
         assert np.abs(decoded.vertices - expected[k][decoded.vertex_ids]).max() <= step
+        by_google, google_faces = decode_with_draco_decoder(drc, tmp_path)
+        assert np.abs(by_google - expected[k][decoded.vertex_ids]).max() <= step
+        np.testing.assert_array_equal(google_faces, decoded.faces)
         vertices, faces = load_mesh(out / "frames" / f"{name}.ply")
         np.testing.assert_allclose(vertices, expected[k], atol=1e-9)
         np.testing.assert_array_equal(faces, shot["set"]["faces"])
+    validate_and_check_no_errors(out / "bend.glb")
+    (mesh,) = trimesh.load(out / "bend.glb").geometry.values()  # structure only: trimesh has no Draco decoder
+    assert mesh.vertices.shape == expected[0].shape
     animation = export_gltf.read_animation_glb((out / "bend.glb").read_bytes())
     assert animation.frame_names == resolved.frame_names
     np.testing.assert_allclose(animation.frames, expected[:, animation.vertex_ids], atol=1e-5)
