@@ -351,10 +351,10 @@ def _resolve_groups(handles: Dict[str, HandleSpec], rest_vertices: np.ndarray) -
     for number, (name, spec) in enumerate(handles.items()):
         path = child("handles", name)
         if isinstance(spec, IndexHandle):
-            indices = np.array(spec.vertices, dtype=np.int64)
             for i, index in enumerate(spec.vertices):
                 if index >= count:
                     raise SchemaViolation(child(path, i), f"vertex {index} is out of range (the rest mesh has {count} vertices)")
+            indices = np.array(spec.vertices, dtype=np.int64)
         else:
             distance = np.linalg.norm(rest_vertices - np.array(spec.near), axis=1)
             indices = np.flatnonzero(distance <= spec.radius)

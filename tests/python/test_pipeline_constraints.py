@@ -187,6 +187,7 @@ def test_schema_violation_names_the_json_path(tube_set, document, mutate, messag
 
 
 RESOLVE_ERRORS = [
+    (_set(["handles", "top"], [2 ** 70] + list(range(31, 36))), f"handles.top[0]: vertex {2 ** 70} is out of range"),
     (_set(["handles", "top"], list(range(1000, 1006))), "handles.top[0]: vertex 1000 is out of range (the rest mesh has 36 vertices)"),
     (_set(["handles", "ring"], {"near": [9, 9, 9], "radius": 0.1}), "handles.ring: no rest vertex within radius 0.1 of [9, 9, 9]"),
     (_set(["handles", "ring"], {"near": [0, 0, 0], "radius": 0.6}), 'handles.ring: vertex 0 is also in handle group "bottom"'),
