@@ -125,3 +125,14 @@ def test_info_describes_meshes_and_constraints(shot, capsys, tmp_path):
     assert flipped["same_triangles_as"] == {str(tube_set["rest"]): False}
     assert constraints["kind"] == "constraints" and constraints["frames"] == 3 and constraints["handle_groups"] == ["bottom", "top"]
     run_failing(["info", tmp_path / "nothing.obj"], capsys, "nothing.obj: file not found")
+
+
+def test_info_describes_pipeline_outputs(shot, capsys):
+    assert main(["pose", str(shot["path"]), "--out", str(shot["out"]), "--quiet"]) == 0
+    assert main(["info", "--json", str(shot["out"] / "frames" / "0002.drc"), str(shot["out"] / "shot.glb")]) == 0
+    drc, glb = json.loads(capsys.readouterr().out)
+    assert drc["kind"] == "draco" and drc["encoding"] == "edgebreaker" and drc["original_ids"] and drc["vertices"] == 48
+    assert glb["kind"] == "glb animation" and glb["frames"] == 3 and glb["triangles"] == 84
+    assert glb["duration_seconds"] == pytest.approx(2 / 24)
+    (shot["out"] / "broken.drc").write_bytes(b"DRACO but not really")
+    run_failing(["info", shot["out"] / "broken.drc"], capsys, "broken.drc: cannot decode Draco data")
