@@ -18,6 +18,7 @@ inline std::vector<int> farthest_point_handles(const std::vector<double>& vertic
   int next = first;
   while (static_cast<int>(handles.size()) < count) {
     handles.push_back(next);
+    distance[next] = 0.0;
     const double* p = &vertices[3 * static_cast<size_t>(next)];
     int farthest = next;
     for (int v = 0; v < n; ++v) {

@@ -35,13 +35,11 @@ class PoseEvaluator {
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
 
  private:
-  // Blends every triangle, stores F_j(w), accumulates J^T J and J^T s, and scatters G'^T F and
-  // G'^T J into rhs_ (columns per coordinate: `columns`).
+  // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
+  // G'^T F and G'^T J into rhs_ (columns per coordinate: `columns`).
   void assemble(const double* weights, int columns, bool with_jacobian);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(int columns, double* vertices) const;
-  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3).
-  double residual_energy(const double* vertices) const;
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
@@ -50,12 +48,16 @@ class PoseEvaluator {
   const double* targets_;
   std::vector<double> coupling_;         // #unknowns by 3: K_fh x_h
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
-  std::vector<double> block_;            // blend_block_size(#E): one triangle's F and dF/dw
-  std::vector<double> blended_;          // #F by 6: F_j(w)
+  std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
+  std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
+  std::vector<double> scatter_rows_;     // 2 by 3 (#E + 1): one triangle's blocks, by column
+  std::vector<double> blended_;          // #batches by 6 by kLanes: F_j(w)
   std::vector<double> rhs_;              // #unknowns by 3 (#E + 1)
   std::vector<double> rhs_before_solve_; // copy of rhs_ (H = G'^T J is needed after the solve)
+  std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
+  std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
   Eigen::MatrixXd jtj_;                  // #E by #E
-  Eigen::VectorXd jts_;                  // #E
+  Eigen::VectorXd jts_;                  // #E: J^T s
 };
 
 }  // namespace meshik

@@ -5,9 +5,9 @@
 // Every function is accurate for theta -> 0; the logarithm is also accurate near theta = pi.
 #pragma once
 
-#include <cmath>
-
 #include <Eigen/Core>
+
+#include "lane_math.h"
 
 namespace meshik {
 
@@ -24,20 +24,7 @@ struct RodriguesCoefficients {
 // (Taylor series below theta = 0.1, half-angle sine and cosine above it; no cancellation).
 inline RodriguesCoefficients rodrigues_coefficients(double theta_squared) {
   RodriguesCoefficients k;
-  const double t2 = theta_squared;
-  if (t2 < 1e-2) {
-    k.a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0)));
-    k.b = 0.5 * (1.0 - t2 / 12.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0 * (1.0 - t2 / 90.0))));
-    k.c = (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0 * (1.0 - t2 / 110.0)))) / 6.0;
-    return k;
-  }
-  const double theta = std::sqrt(t2);
-  const double half_sin = std::sin(0.5 * theta);
-  const double half_cos = std::cos(0.5 * theta);
-  const double sin_theta = 2.0 * half_sin * half_cos;
-  k.a = sin_theta / theta;
-  k.b = 2.0 * half_sin * half_sin / t2;
-  k.c = (theta - sin_theta) / (t2 * theta);
+  rodrigues_lanes<1>(&theta_squared, &k.a, &k.b, &k.c);
   return k;
 }
 
