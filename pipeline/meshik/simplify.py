@@ -126,8 +126,11 @@ def simplify_openmesh(meshes: ExampleMeshes, target_triangles: int, handles: np.
     if not hasattr(_core, "decimate"):
         raise PipelineError("this build of meshik._core has no OpenMesh decimator (bind_decimate not registered): "
                             "use --simplifier fast")
-    kept, faces, vertex_map = _core.decimate(meshes.rest, meshes.faces.astype(np.int32), list(meshes.examples),
-                                             handles.astype(np.int32), target_triangles)
+    try:
+        kept, faces, vertex_map = _core.decimate(meshes.rest, meshes.faces.astype(np.int32), list(meshes.examples),
+                                                 handles.astype(np.int32), target_triangles)
+    except ValueError as error:  # meshik.InputError: a non-manifold or inconsistently oriented mesh
+        raise PipelineError(f"{meshes.rest_path}: {error}") from None
     kept = np.asarray(kept, dtype=np.int64)
     simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(faces, dtype=np.int64),
                          examples=tuple(example[kept] for example in meshes.examples))

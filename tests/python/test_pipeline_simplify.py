@@ -95,6 +95,14 @@ def test_openmesh_keeps_detail_that_moves_in_an_example():
     assert aware_error < 0.25 * rest_only_error
 
 
+def test_openmesh_names_the_non_manifold_triangle():
+    vertices, faces = grid(size=5)
+    faces = np.concatenate([faces, faces[:1]])  # a triangle twice: its edges have three triangles
+    meshes = ExampleMeshes(rest=vertices, faces=faces, examples=(vertices,), rest_path="grid.obj", example_paths=("e",))
+    with pytest.raises(PipelineError, match=r"grid.obj: triangle 32 and triangle 0 both run along the edge"):
+        simplify(meshes, 10, np.array([0]), "openmesh")
+
+
 def test_bad_requests():
     vertices, faces = grid(size=5)
     meshes = ExampleMeshes(rest=vertices, faces=faces, examples=(vertices,), rest_path="r", example_paths=("e",))
