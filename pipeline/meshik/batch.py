@@ -91,6 +91,7 @@ class _Worker:
     """One job running in its own Python process; its result comes back as JSON in a temporary file."""
 
     def __init__(self, constraints: Path, destination: Path, job_options: Dict[str, Any]):
+        """Start `python -m meshik.batch_worker` for one job (stderr kept in a temporary file)."""
         self.constraints, self.destination = constraints, destination
         self.started = time.perf_counter()
         self.folder = tempfile.TemporaryDirectory(prefix="meshik-job-")

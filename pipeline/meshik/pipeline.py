@@ -239,5 +239,6 @@ class _Announcer:
         self.name, self.quiet, self.stream = name, quiet, stream
 
     def __call__(self, message: str) -> None:
+        """Print one line for this job (nothing when quiet)."""
         if not self.quiet:
             print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)

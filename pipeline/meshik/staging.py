@@ -62,6 +62,7 @@ class StagedOutput:
     """
 
     def __init__(self, destination: Path):
+        """Create `destination` (if needed) and a fresh staging folder in it; OutputError if impossible."""
         self.destination = Path(destination)
         check_writable(self.destination)
         self.created = not self.destination.exists()
