@@ -49,6 +49,8 @@ struct SolveResult {
   int iterations = 0;            // Gauss-Newton iterations taken
   double residual = 0.0;         // final energy ||G'x - (M(w) + c)||^2 + k ||w||^2
   bool converged = false;        // stopped by the tolerance rather than max_iterations
+  std::vector<double> energies;  // energy at the start and after each accepted iteration
+                                 // (non-increasing; the last equals residual)
 };
 
 // Called with a fraction in [0, 1] and a short stage name; return false to cancel

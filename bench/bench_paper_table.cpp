@@ -1,0 +1,282 @@
+// The paper's timing table (Sumner et al. 2005, Table 1) beside MeshIK's own figures on the same
+// meshes: lion, horse and elephant from --data (../shared/data) and the generated example sets in
+// --samples (sample_meshes/). Single thread. For each mesh:
+//   Factor  = building the Solver for a handle set (assembly, ordering, numeric factorization),
+//   Solve   = one Gauss-Newton iteration (whole pose time / iterations),
+//   Total   = one whole pose from the rest weights (w = 0) to convergence,
+// each the median of several runs, with the paper's seconds and the speed-up (paper / ours).
+// The in-run comparison: the same factorization with the fourth vertices kept (not eliminated).
+// Handles: 16 vertices by farthest-point sampling; targets: a held-out pose (not an example).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gradient_operator.h"
+#include "meshik/meshik.h"
+#include "meshik/sparse_cholesky.h"
+#include "obj_reader.h"
+#include "paper_handles.h"
+#include "triangle_frames.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PaperRow {
+  const char* name;
+  const char* verts;
+  const char* tris;
+  int examples;
+  double factor, solve, total;  // seconds, 3.4 GHz Pentium 4
+};
+
+const PaperRow kPaper[] = {{"Bar", "132", "260", 2, 0.000, 0.000, 0.015},
+                           {"Flag", "516", "932", 14, 0.016, 0.015, 0.020},
+                           {"Lion", "5,000", "9,996", 10, 0.475, 0.150, 0.210},
+                           {"Horse", "8,425", "16,846", 4, 0.610, 0.105, 0.160},
+                           {"Elephant", "42,321", "84,638", 4, 13.249, 0.620, 0.906}};
+
+// An example set to time: rest mesh, examples, and the held-out pose giving the targets.
+struct Case {
+  std::string name;
+  const PaperRow* paper = nullptr;
+  meshik_bench::TriangleMesh rest;
+  std::vector<std::vector<double>> examples;
+  std::vector<double> held_out;
+  std::string note;
+};
+
+struct Timing {
+  double precompute_ms = 0, factor_ms = 0, kept_factor_ms = 0, iteration_ms = 0, pose_ms = 0;
+  int iterations = 0;
+  double pose_error = 0;  // RMS vertex distance to the held-out pose / bounding-box diagonal
+};
+
+double milliseconds_of(const std::function<void()>& work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Median time of `repeats` runs of work, in milliseconds.
+double median_ms(int repeats, const std::function<void()>& work) {
+  std::vector<double> times;
+  for (int r = 0; r < repeats; ++r) times.push_back(milliseconds_of(work));
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+// Factor time of G'^T G' with the fourth vertices kept as unknowns (#V - #H + #F), for comparison.
+double kept_factor_ms(const meshik_bench::TriangleMesh& mesh, const std::vector<int>& handles,
+                      int repeats) {
+  const int n = mesh.num_vertices(), m = mesh.num_triangles();
+  const meshik::TriangleFrames frames =
+      meshik::compute_triangle_frames(mesh.vertices.data(), mesh.triangles.data(), m);
+  std::vector<int> unknown(n + m, 0);
+  for (int h : handles) unknown[h] = -1;
+  int count = 0;
+  for (int& u : unknown) u = u < 0 ? -1 : count++;
+  // Columns of G' per row (each row of G touches 4 columns); lower triangle of G'^T G'.
+  const std::vector<meshik::MatrixEntry> g = meshik::kept_gradient_operator(frames, mesh.triangles.data(), n);
+  std::vector<std::vector<std::pair<int, double>>> columns(count);
+  for (size_t row_start = 0; row_start < g.size(); row_start += 4)
+    for (size_t a = row_start; a < row_start + 4; ++a)
+      for (size_t b = row_start; b < row_start + 4; ++b) {
+        const int i = unknown[g[a].col], j = unknown[g[b].col];
+        if (i >= 0 && j >= 0 && i >= j) columns[j].push_back({i, g[a].value * g[b].value});
+      }
+  meshik::CscMatrix lower;
+  lower.rows = lower.cols = count;
+  lower.col_start.push_back(0);
+  for (auto& column : columns) {
+    std::sort(column.begin(), column.end());
+    for (size_t s = 0; s < column.size(); ++s) {
+      if (s > 0 && column[s].first == column[s - 1].first) {
+        lower.values.back() += column[s].second;
+      } else {
+        lower.row_index.push_back(column[s].first);
+        lower.values.push_back(column[s].second);
+      }
+    }
+    lower.col_start.push_back(static_cast<int>(lower.row_index.size()));
+  }
+  return median_ms(repeats, [&] {
+    meshik::SparseCholesky factor;
+    factor.compute(lower);
+  });
+}
+
+Timing time_case(const Case& c, int repeats) {
+  Timing t;
+  std::vector<const double*> pointers;
+  for (const auto& e : c.examples) pointers.push_back(e.data());
+  const meshik::MeshView view{c.rest.vertices.data(), c.rest.num_vertices(), c.rest.triangles.data(),
+                              c.rest.num_triangles()};
+  std::shared_ptr<meshik::ExampleSet> set;
+  t.precompute_ms = milliseconds_of([&] { set = std::make_shared<meshik::ExampleSet>(view, pointers); });
+  const std::vector<int> handles = meshik_bench::farthest_point_handles(c.rest.vertices, 16);
+  const std::vector<double> targets = meshik_bench::gather_rows(c.held_out, handles);
+  std::unique_ptr<meshik::Solver> solver;
+  t.factor_ms = median_ms(repeats, [&] { solver = std::make_unique<meshik::Solver>(set, handles); });
+  t.kept_factor_ms = kept_factor_ms(c.rest, handles, repeats);
+  meshik::SolveResult result;
+  t.pose_ms = median_ms(repeats, [&] { result = solver->solve(targets.data()); });
+  t.iterations = result.iterations;
+  t.iteration_ms = t.pose_ms / std::max(1, result.iterations);
+  double sum = 0;
+  for (size_t e = 0; e < targets.size() && e < result.vertices.size(); ++e) (void)e;
+  for (size_t e = 0; e < result.vertices.size(); ++e)
+    sum += (result.vertices[e] - c.held_out[e]) * (result.vertices[e] - c.held_out[e]);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (size_t e = 0; e < c.held_out.size(); ++e) {
+    lo[e % 3] = std::min(lo[e % 3], c.held_out[e]);
+    hi[e % 3] = std::max(hi[e % 3], c.held_out[e]);
+  }
+  const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  t.pose_error = std::sqrt(sum / c.rest.num_vertices()) / diagonal;
+  return t;
+}
+
+// A shared/data folder: reference.obj, examples by number, one held-out pose.
+bool load_data_case(const std::string& data, const char* folder, const PaperRow* paper,
+                    std::vector<int> example_numbers, int held_out, Case& c) {
+  const fs::path dir = fs::path(data) / folder;
+  if (!fs::exists(dir / "reference.obj")) {
+    std::printf("(skipping %s: %s not found)\n", folder, (dir / "reference.obj").c_str());
+    return false;
+  }
+  c.name = paper->name;
+  c.paper = paper;
+  c.rest = meshik_bench::read_obj((dir / "reference.obj").string());
+  for (int k : example_numbers)
+    c.examples.push_back(meshik_bench::read_obj((dir / (std::to_string(k) + ".obj")).string()).vertices);
+  c.held_out = meshik_bench::read_obj((dir / (std::to_string(held_out) + ".obj")).string()).vertices;
+  c.note = std::string(folder) + ": examples";
+  for (int k : example_numbers) c.note += " " + std::to_string(k);
+  c.note += ", targets from pose " + std::to_string(held_out);
+  return true;
+}
+
+// A sample_meshes/ folder: rest.obj and example_*.obj. The last example is held out when there are
+// three or more; otherwise the targets come from the mean of the examples.
+bool load_sample_case(const fs::path& dir, Case& c) {
+  if (!fs::exists(dir / "rest.obj")) return false;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("example_", 0) == 0 && entry.path().extension() == ".obj") files.push_back(entry.path());
+  }
+  if (files.empty()) return false;
+  std::sort(files.begin(), files.end());
+  c.name = "sample " + dir.filename().string();
+  for (const PaperRow& row : kPaper) {
+    std::string lower = row.name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+    if (dir.filename().string() == lower) c.paper = &row;
+  }
+  c.rest = meshik_bench::read_obj((dir / "rest.obj").string());
+  for (const auto& f : files) c.examples.push_back(meshik_bench::read_obj(f.string()).vertices);
+  if (c.examples.size() >= 3) {
+    c.held_out = c.examples.back();
+    c.examples.pop_back();
+    c.note = c.name + ": targets from held-out " + files.back().filename().string();
+  } else {
+    c.held_out.assign(c.rest.vertices.size(), 0.0);
+    for (const auto& e : c.examples)
+      for (size_t i = 0; i < e.size(); ++i) c.held_out[i] += e[i] / c.examples.size();
+    c.note = c.name + ": targets from the mean of the examples";
+  }
+  return true;
+}
+
+std::string with_commas(int value) {
+  std::string digits = std::to_string(value), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// Paper seconds / ours (ms), or "-" when a figure is missing or zero.
+std::string speedup(double paper_s, double ours_ms) {
+  if (paper_s <= 0 || ours_ms <= 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0fx", paper_s * 1000.0 / ours_ms);
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string samples = "sample_meshes", data = "../shared/data", only;
+  int repeats = 5;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i];
+    if (key == "--samples") samples = argv[i + 1];
+    else if (key == "--data") data = argv[i + 1];
+    else if (key == "--repeats") repeats = std::max(1, std::atoi(argv[i + 1]));
+    else if (key == "--only") only = argv[i + 1];
+    else std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
+  }
+  std::vector<Case> cases;
+  if (fs::is_directory(samples)) {
+    std::vector<fs::path> dirs;
+    for (const auto& entry : fs::directory_iterator(samples))
+      if (entry.is_directory()) dirs.push_back(entry.path());
+    std::sort(dirs.begin(), dirs.end());
+    for (const auto& dir : dirs) {
+      Case c;
+      if (load_sample_case(dir, c)) cases.push_back(std::move(c));
+    }
+  } else {
+    std::printf("(no sample meshes at %s)\n", samples.c_str());
+  }
+  // lion-poses has 9 poses: 8 are examples and one is held out (the paper used 10 examples).
+  const struct {
+    const char* folder;
+    int paper_row;
+    std::vector<int> examples;
+    int held_out;
+  } data_sets[] = {{"lion-poses", 2, {1, 2, 3, 4, 5, 6, 7, 8}, 9},
+                   {"horse-poses", 3, {1, 2, 3, 4}, 5},
+                   {"elephant-poses", 4, {1, 2, 3, 4}, 5}};
+  for (const auto& d : data_sets) {
+    Case c;
+    if (load_data_case(data, d.folder, &kPaper[d.paper_row], d.examples, d.held_out, c))
+      cases.push_back(std::move(c));
+  }
+
+  std::printf("\nMeshIK vs the paper (Sumner et al. 2005, 3.4 GHz Pentium 4), nonlinear feature space,\n"
+              "16 handles, single thread; ours: median of %d runs. Paper figures in seconds, ours in ms.\n\n",
+              repeats);
+  std::printf("%-16s %7s %7s %3s | %8s %8s %8s | %9s %9s %9s %5s | %7s %7s %7s | %9s %9s %8s\n", "Mesh", "Verts",
+              "Tris", "Ex", "Factor s", "Solve s", "Total s", "Factor ms", "Solve ms", "Total ms", "Iter",
+              "xFactor", "xSolve", "xTotal", "Precomp", "Kept4th", "RMS err");
+  for (const Case& c : cases) {
+    if (!only.empty() && c.name.find(only) == std::string::npos) continue;
+    const Timing t = time_case(c, repeats);
+    const PaperRow* p = c.paper;
+    char paper_cols[64] = "       -        -        -";
+    if (p) std::snprintf(paper_cols, sizeof paper_cols, "%8.3f %8.3f %8.3f", p->factor, p->solve, p->total);
+    std::printf("%-16s %7s %7s %3zu | %s | %9.2f %9.2f %9.2f %5d | %7s %7s %7s | %9.1f %9.2f %8.5f\n",
+                c.name.c_str(), with_commas(c.rest.num_vertices()).c_str(),
+                with_commas(c.rest.num_triangles()).c_str(), c.examples.size(), paper_cols, t.factor_ms,
+                t.iteration_ms, t.pose_ms, t.iterations, p ? speedup(p->factor, t.factor_ms).c_str() : "-",
+                p ? speedup(p->solve, t.iteration_ms).c_str() : "-", p ? speedup(p->total, t.pose_ms).c_str() : "-",
+                t.precompute_ms, t.kept_factor_ms, t.pose_error);
+    std::fflush(stdout);
+  }
+  std::printf("\nPaper rows: Bar 132/260/2, Flag 516/932/14, Lion 5,000/9,996/10, Horse 8,425/16,846/4, "
+              "Elephant 42,321/84,638/4.\n"
+              "xFactor/xSolve/xTotal: paper time / our time. Precomp: ExampleSet (features of all examples).\n"
+              "Kept4th: our factorization of G'^T G' with the fourth vertices kept as unknowns (ms), the\n"
+              "in-run comparison for Factor. RMS err: RMS vertex distance to the held-out pose / bbox diagonal.\n");
+  for (const Case& c : cases) std::printf("  %s\n", c.note.c_str());
+  return 0;
+}

@@ -1,0 +1,123 @@
+// ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
+#include <numeric>
+
+#include "example_set_impl.h"
+#include "gradient_operator.h"
+#include "input_validation.h"
+#include "pose_evaluation.h"
+#include "pose_system.h"
+
+namespace meshik {
+
+ExampleSet::Impl::Impl() = default;
+ExampleSet::Impl::~Impl() = default;
+
+namespace {
+
+// Fills the per-component rest centroids and example centroid shifts of impl.
+void compute_centroids(ExampleSet::Impl& impl, const std::vector<const double*>& examples) {
+  const int count = impl.components.count;
+  const int k = impl.num_examples;
+  impl.rest_centroid.assign(3 * static_cast<size_t>(count), 0.0);
+  impl.centroid_shift.assign(3 * static_cast<size_t>(count) * k, 0.0);
+  std::vector<int> size(count, 0);
+  for (int v = 0; v < impl.num_vertices; ++v) {
+    const int c = impl.components.component_of_vertex[v];
+    if (c < 0) continue;
+    ++size[c];
+    for (int d = 0; d < 3; ++d) {
+      const double rest = impl.rest[3 * static_cast<size_t>(v) + d];
+      impl.rest_centroid[3 * c + d] += rest;
+      for (int i = 0; i < k; ++i)
+        impl.centroid_shift[3 * (static_cast<size_t>(c) * k + i) + d] +=
+            examples[i][3 * static_cast<size_t>(v) + d] - rest;
+    }
+  }
+  for (int c = 0; c < count; ++c)
+    for (int d = 0; d < 3; ++d) {
+      impl.rest_centroid[3 * c + d] /= size[c];
+      for (int i = 0; i < k; ++i) impl.centroid_shift[3 * (static_cast<size_t>(c) * k + i) + d] /= size[c];
+    }
+}
+
+// One vertex of every connected component (the first in index order).
+std::vector<int> component_anchors(const VertexComponents& components) {
+  std::vector<int> anchors(components.count, -1);
+  for (size_t v = 0; v < components.component_of_vertex.size(); ++v) {
+    const int c = components.component_of_vertex[v];
+    if (c >= 0 && anchors[c] < 0) anchors[c] = static_cast<int>(v);
+  }
+  return anchors;
+}
+
+}  // namespace
+
+ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,
+                       const ProgressCallback& progress)
+    : impl_(std::make_unique<Impl>()) {
+  validate_rest_mesh(rest);
+  validate_examples(examples, rest.num_vertices);
+  if (progress && !progress(0.0, "validated input")) throw Cancelled("cancelled after validation");
+  Impl& impl = *impl_;
+  impl.num_vertices = rest.num_vertices;
+  impl.num_triangles = rest.num_triangles;
+  impl.num_examples = static_cast<int>(examples.size());
+  impl.rest.assign(rest.vertices, rest.vertices + 3 * static_cast<size_t>(rest.num_vertices));
+  impl.triangles.assign(rest.triangles, rest.triangles + 3 * static_cast<size_t>(rest.num_triangles));
+  impl.components = vertex_components(rest.triangles, rest.num_triangles, rest.num_vertices);
+  impl.frames = compute_triangle_frames(rest.vertices, rest.triangles, rest.num_triangles);
+  const TriangleAdjacency adjacency =
+      triangle_adjacency(rest.triangles, rest.num_triangles, rest.num_vertices);
+  impl.features =
+      compute_example_features(impl.frames, adjacency, rest.triangles, examples, progress);
+  impl.normal_matrix = eliminated_normal_matrix(impl.frames, rest.triangles, rest.num_vertices);
+  compute_centroids(impl, examples);
+}
+
+ExampleSet::~ExampleSet() = default;
+ExampleSet::ExampleSet(ExampleSet&&) noexcept = default;
+ExampleSet& ExampleSet::operator=(ExampleSet&&) noexcept = default;
+
+int ExampleSet::num_vertices() const { return impl_->num_vertices; }
+int ExampleSet::num_triangles() const { return impl_->num_triangles; }
+int ExampleSet::num_examples() const { return impl_->num_examples; }
+
+std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space) const {
+  const Impl& impl = *impl_;
+  const int k = impl.num_examples;
+  if (k > 0 && weights == nullptr) throw InputError("no weights given to blend");
+  validate_finite(weights, k, "weight");
+  std::call_once(impl.blend_system_once, [&impl] {
+    impl.blend_system = std::make_unique<PoseSystem>(impl, component_anchors(impl.components));
+  });
+  // Anchors at the origin fix each component's translation; shift it afterwards.
+  const std::vector<double> origin(3 * impl.blend_system->handles().size(), 0.0);
+  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data());
+  PoseEvaluation pose;
+  evaluator.evaluate(weights, false, pose);
+
+  const int count = impl.components.count;
+  std::vector<double> shift(3 * static_cast<size_t>(count), 0.0);
+  std::vector<int> size(count, 0);
+  for (int v = 0; v < impl.num_vertices; ++v) {
+    const int c = impl.components.component_of_vertex[v];
+    if (c < 0) continue;
+    ++size[c];
+    for (int d = 0; d < 3; ++d) shift[3 * c + d] -= pose.vertices[3 * static_cast<size_t>(v) + d];
+  }
+  for (int c = 0; c < count; ++c)
+    for (int d = 0; d < 3; ++d) {
+      double target = impl.rest_centroid[3 * c + d];
+      for (int i = 0; i < k; ++i)
+        target += weights[i] * impl.centroid_shift[3 * (static_cast<size_t>(c) * k + i) + d];
+      shift[3 * c + d] = shift[3 * c + d] / size[c] + target;
+    }
+  for (int v = 0; v < impl.num_vertices; ++v) {
+    const int c = impl.components.component_of_vertex[v];
+    if (c < 0) continue;
+    for (int d = 0; d < 3; ++d) pose.vertices[3 * static_cast<size_t>(v) + d] += shift[3 * c + d];
+  }
+  return std::move(pose.vertices);
+}
+
+}  // namespace meshik

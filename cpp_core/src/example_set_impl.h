@@ -1,0 +1,42 @@
+// What an ExampleSet holds: the rest mesh, its topology and frames, the examples' features, the
+// eliminated normal matrix K on all vertices, and the per-component centroids used by blend().
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "feature_space.h"
+#include "meshik/meshik.h"
+#include "meshik/sparse_cholesky.h"
+#include "mesh_topology.h"
+#include "triangle_frames.h"
+
+namespace meshik {
+
+class PoseSystem;
+
+struct ExampleSet::Impl {
+  int num_vertices = 0;
+  int num_triangles = 0;
+  int num_examples = 0;
+  std::vector<double> rest;    // #V by 3
+  std::vector<int> triangles;  // #F by 3
+  VertexComponents components;
+  TriangleFrames frames;
+  ExampleFeatures features;
+  CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
+  // Per component c: the rest centroid (3) and each example's centroid minus it (#E by 3), so
+  // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
+  std::vector<double> rest_centroid;   // #components by 3
+  std::vector<double> centroid_shift;  // #components by #E by 3
+
+  // blend() solves with one anchor vertex per component; built on first use.
+  mutable std::once_flag blend_system_once;
+  mutable std::unique_ptr<PoseSystem> blend_system;
+
+  Impl();
+  ~Impl();
+};
+
+}  // namespace meshik

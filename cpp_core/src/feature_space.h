@@ -1,0 +1,57 @@
+// The examples' per-triangle features and their blend M(w) with its exact Jacobian dM/dw.
+//
+// Only T_j(w) U_j (3 by 2) enters the eliminated energy (triangle_frames.h), so the features are
+// stored projected on the rest plane:
+//   nonlinear: phi_ij = log R_ij (a consistent branch), D_ij = (S_ij - I) U_j
+//              F_j(w) = exp(sum_i w_i phi_ij) (U_j + sum_i w_i D_ij)
+//   linear:    L_ij = (T_ij - I) U_j,     F_j(w) = U_j + sum_i w_i L_ij
+// with T_ij = R_ij S_ij the proper polar decomposition. w = 0 gives U_j (the rest pose) and
+// w = e_i gives T_ij U_j (example i).
+//
+// Triangles are processed in batches of kLanes, stored lane-minor (structure of arrays per batch)
+// so that one batch's arithmetic is SIMD; the last batch is padded with zero features.
+#pragma once
+
+#include <vector>
+
+#include "meshik/meshik.h"
+#include "mesh_topology.h"
+#include "triangle_frames.h"
+
+namespace meshik {
+
+// Triangles blended together (one AVX-512 register of doubles per quantity).
+constexpr int kLanes = 8;
+
+struct ExampleFeatures {
+  int num_examples = 0;
+  int num_triangles = 0;
+  int num_batches = 0;  // ceil(#F / kLanes)
+  // Batch b, example i: 9 rows of kLanes values, phi_ij (3) then D_ij (3 by 2 row-major):
+  // entry ((b #E + i) 9 + row) kLanes + lane for triangle j = b kLanes + lane.
+  std::vector<double> nonlinear;
+  // Batch b, example i: 6 rows of kLanes, L_ij (3 by 2 row-major): ((b #E + i) 6 + row) kLanes + lane.
+  std::vector<double> linear;
+  // Batch b: 6 rows of kLanes, U_j (3 by 2 row-major): (b 6 + row) kLanes + lane.
+  std::vector<double> plane_basis;
+};
+
+// frames / adjacency / triangles (#F by 3): the rest mesh's; examples: #E pointers to #V by 3
+// positions. consistent_branches = false keeps the principal rotation logs (for comparison only).
+// progress(fraction) is called once per example.
+ExampleFeatures compute_example_features(const TriangleFrames& frames,
+                                         const TriangleAdjacency& adjacency, const int* triangles,
+                                         const std::vector<const double*>& examples,
+                                         const ProgressCallback& progress = {},
+                                         bool consistent_branches = true);
+
+// Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each.
+inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * kLanes; }
+
+// Blends the triangles of `batch` with weights w (#E). Writes to out (blend_batch_size doubles),
+// for q = 0 the targets F_j(w) and for q = 1 .. #E the derivatives dF_j/dw_{q-1}, each 3 by 2
+// row-major: out[((q 6) + row) kLanes + lane].
+void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
+                 double* out);
+
+}  // namespace meshik

@@ -1,0 +1,35 @@
+// The deformation-gradient operator G and the normal matrix of the pose least-squares problem
+// with the fourth-vertex unknowns eliminated.
+//
+// For one coordinate c (the same G serves x, y and z), G maps the #V vertex values followed by the
+// #F fourth-vertex values to the 3 #F values T_j[c][r] (row 3 j + r). The fourth vertex of
+// triangle j appears only in triangle j's rows, so the fourth-vertex block of G^T G is diagonal
+// and eliminating it exactly leaves K = sum_j (corner Gram matrix of g_j) on the #V vertices,
+// with the sparsity of the mesh's vertex graph. The matching right-hand side uses T_j U_j only
+// (see triangle_frames.h).
+#pragma once
+
+#include <vector>
+
+#include "meshik/sparse_cholesky.h"
+#include "triangle_frames.h"
+
+namespace meshik {
+
+struct MatrixEntry {
+  int row;
+  int col;
+  double value;
+};
+
+// G with the fourth vertices kept: 3 #F by (#V + #F) entries (12 per triangle), unsorted.
+// frames / triangles: the rest mesh's (#F by 3 indices); num_vertices: #V.
+std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, const int* triangles,
+                                                int num_vertices);
+
+// K = G^T G with the fourth vertices eliminated: #V by #V, both triangles stored, rows sorted in
+// each column, the diagonal always present (zero for a vertex used by no triangle).
+CscMatrix eliminated_normal_matrix(const TriangleFrames& frames, const int* triangles,
+                                   int num_vertices);
+
+}  // namespace meshik

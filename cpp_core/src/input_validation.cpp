@@ -1,0 +1,121 @@
+// Input checks with messages that name the offending vertex, triangle, example or handle.
+#include "input_validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace meshik {
+
+namespace {
+
+// A triangle whose doubled area is below this fraction of its longest edge squared has no
+// usable frame (its deformation gradient is undefined).
+constexpr double kZeroAreaRatio = 1e-12;
+
+bool finite3(const double* p) {
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+Eigen::Vector3d point(const double* vertices, int v) {
+  return Eigen::Vector3d(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
+}
+
+}  // namespace
+
+void validate_rest_mesh(const MeshView& rest) {
+  if (rest.num_vertices <= 0 || rest.vertices == nullptr)
+    throw InputError("the rest mesh has no vertices");
+  if (rest.num_triangles <= 0 || rest.triangles == nullptr)
+    throw InputError("the rest mesh has no triangles");
+  for (int v = 0; v < rest.num_vertices; ++v)
+    if (!finite3(rest.vertices + 3 * v))
+      throw InputError("rest vertex " + std::to_string(v) + " has a non-finite coordinate");
+  const int n = rest.num_vertices;
+  for (int j = 0; j < rest.num_triangles; ++j) {
+    const int* t = rest.triangles + 3 * j;
+    for (int q = 0; q < 3; ++q)
+      if (t[q] < 0 || t[q] >= n)
+        throw InputError("triangle " + std::to_string(j) + " has vertex index " +
+                         std::to_string(t[q]) + " out of range [0, " + std::to_string(n) + ")");
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      throw InputError("triangle " + std::to_string(j) + " repeats a vertex (" +
+                       std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
+                       std::to_string(t[2]) + ")");
+    const Eigen::Vector3d a = point(rest.vertices, t[0]);
+    const Eigen::Vector3d e1 = point(rest.vertices, t[1]) - a;
+    const Eigen::Vector3d e2 = point(rest.vertices, t[2]) - a;
+    const double longest =
+        std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+    if (!(e1.cross(e2).norm() > kZeroAreaRatio * longest))
+      throw InputError("triangle " + std::to_string(j) + " has zero area in the rest mesh");
+  }
+}
+
+void validate_examples(const std::vector<const double*>& examples, int num_vertices) {
+  for (size_t i = 0; i < examples.size(); ++i) {
+    if (examples[i] == nullptr) throw InputError("example " + std::to_string(i) + " is missing");
+    for (int v = 0; v < num_vertices; ++v)
+      if (!finite3(examples[i] + 3 * v))
+        throw InputError("example " + std::to_string(i) + " vertex " + std::to_string(v) +
+                         " has a non-finite coordinate");
+  }
+}
+
+void validate_handles(const std::vector<int>& handles, int num_vertices,
+                      const VertexComponents& components) {
+  if (handles.empty()) throw InputError("no handles: at least one vertex must be constrained");
+  std::vector<int> handle_of_vertex(num_vertices, -1);
+  std::vector<char> anchored(components.count, 0);
+  for (size_t h = 0; h < handles.size(); ++h) {
+    const int v = handles[h];
+    const std::string name = "handle " + std::to_string(h) + " (vertex " + std::to_string(v) + ")";
+    if (v < 0 || v >= num_vertices)
+      throw InputError(name + " is out of range [0, " + std::to_string(num_vertices) + ")");
+    if (handle_of_vertex[v] >= 0)
+      throw InputError(name + " repeats handle " + std::to_string(handle_of_vertex[v]));
+    handle_of_vertex[v] = static_cast<int>(h);
+    if (components.component_of_vertex[v] >= 0) anchored[components.component_of_vertex[v]] = 1;
+  }
+  for (int v = 0; v < num_vertices; ++v) {
+    const int c = components.component_of_vertex[v];
+    if (c >= 0 && !anchored[c]) {
+      int size = 0;
+      for (int u : components.component_of_vertex) size += (u == c);
+      throw InputError("the connected component containing vertex " + std::to_string(v) + " (" +
+                       std::to_string(size) +
+                       " vertices) has no handle: its position would be undetermined");
+    }
+  }
+}
+
+void validate_options(const SolverOptions& options) {
+  if (!(std::isfinite(options.weight_regularization) && options.weight_regularization >= 0.0))
+    throw InputError("weight_regularization must be finite and >= 0, got " +
+                     std::to_string(options.weight_regularization));
+  if (!(std::isfinite(options.tolerance) && options.tolerance >= 0.0))
+    throw InputError("tolerance must be finite and >= 0, got " +
+                     std::to_string(options.tolerance));
+  if (options.max_iterations < 0)
+    throw InputError("max_iterations must be >= 0, got " +
+                     std::to_string(options.max_iterations));
+}
+
+void validate_finite(const double* values, int count, const char* what) {
+  for (int i = 0; i < count; ++i)
+    if (!std::isfinite(values[i]))
+      throw InputError(std::string(what) + " " + std::to_string(i) + " is not finite");
+}
+
+void validate_targets(const double* targets, const std::vector<int>& handles) {
+  if (targets == nullptr) throw InputError("no target positions given for the handles");
+  for (size_t h = 0; h < handles.size(); ++h)
+    if (!finite3(targets + 3 * h))
+      throw InputError("target " + std::to_string(h) + " (handle vertex " +
+                       std::to_string(handles[h]) + ") has a non-finite coordinate");
+}
+
+}  // namespace meshik

@@ -1,0 +1,32 @@
+// Checks of the user's input; each throws InputError with a message naming the bad element.
+#pragma once
+
+#include <vector>
+
+#include "meshik/meshik.h"
+#include "mesh_topology.h"
+
+namespace meshik {
+
+// The rest mesh: at least one vertex and triangle, finite coordinates, triangle indices in range
+// and distinct within a triangle, and no triangle of (numerically) zero area.
+void validate_rest_mesh(const MeshView& rest);
+
+// Each example is non-null with #V finite vertex positions (#V by 3 row-major).
+void validate_examples(const std::vector<const double*>& examples, int num_vertices);
+
+// handles: #H distinct vertex indices in [0, num_vertices), at least one, and at least one in
+// every connected component of the triangles.
+void validate_handles(const std::vector<int>& handles, int num_vertices,
+                      const VertexComponents& components);
+
+// Options of the solver: finite non-negative regularization and tolerance, max_iterations >= 0.
+void validate_options(const SolverOptions& options);
+
+// values: count finite numbers; what names the array in the message ("initial weight", ...).
+void validate_finite(const double* values, int count, const char* what);
+
+// targets: #H by 3 row-major finite positions of the handles.
+void validate_targets(const double* targets, const std::vector<int>& handles);
+
+}  // namespace meshik

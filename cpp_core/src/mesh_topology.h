@@ -1,0 +1,29 @@
+// Connectivity of a triangle mesh: connected components of the vertices used by triangles, and
+// the edge adjacency of triangles.
+#pragma once
+
+#include <vector>
+
+namespace meshik {
+
+// Vertex components of the graph whose edges are the triangles' edges.
+struct VertexComponents {
+  // #V: component id in [0, count) of each vertex, or -1 for a vertex used by no triangle.
+  std::vector<int> component_of_vertex;
+  int count = 0;
+};
+
+// triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)).
+VertexComponents vertex_components(const int* triangles, int num_triangles, int num_vertices);
+
+// Triangles sharing an edge, in compressed rows: the neighbours of triangle j are
+// neighbour[start[j] .. start[j+1]). A non-manifold edge makes all its triangles neighbours.
+struct TriangleAdjacency {
+  std::vector<int> start;      // #F + 1
+  std::vector<int> neighbour;  // sum of the neighbour counts
+};
+
+// triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)).
+TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices);
+
+}  // namespace meshik

@@ -1,0 +1,235 @@
+// The reduced energy, its optimal vertices and its Gauss-Newton system at given weights.
+#include "pose_evaluation.h"
+
+#include <algorithm>
+
+#include "feature_space.h"
+#include "simd_clones.h"
+
+namespace meshik {
+
+namespace {
+
+constexpr int L = kLanes;
+
+// Adds one batch's J^T J (#E by #E, lower triangle, per lane) and J^T F (#E, per lane).
+// out: a blend_batch output.
+MESHIK_SIMD_CLONES
+void accumulate_jacobian_products(const double* __restrict out, int k, double* __restrict jtj_lanes,
+                                  double* __restrict jtf_lanes) {
+  for (int a = 0; a < k; ++a) {
+    const double* __restrict ja = out + (a + 1) * 6 * L;
+    double sum[L];
+    for (int l = 0; l < L; ++l) sum[l] = jtf_lanes[a * L + l];
+    for (int e = 0; e < 6; ++e)
+      for (int l = 0; l < L; ++l) sum[l] += ja[e * L + l] * out[e * L + l];
+    for (int l = 0; l < L; ++l) jtf_lanes[a * L + l] = sum[l];
+    for (int b = 0; b <= a; ++b) {
+      const double* __restrict jb = out + (b + 1) * 6 * L;
+      double* __restrict acc = jtj_lanes + (a * k + b) * L;
+      for (int l = 0; l < L; ++l) sum[l] = acc[l];
+      for (int e = 0; e < 6; ++e)
+        for (int l = 0; l < L; ++l) sum[l] += ja[e * L + l] * jb[e * L + l];
+      for (int l = 0; l < L; ++l) acc[l] = sum[l];
+    }
+  }
+}
+
+// G'^T for one batch: every free corner q of triangle j adds g_q . (row c of block col) to its
+// row of rhs (#unknowns by 3 columns, coordinate-major), for all blocks col < columns of out.
+// lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's;
+// by_column: scratch of 2 by 3 columns doubles.
+MESHIK_SIMD_CLONES
+void scatter_batch(const double* out, int columns, int lanes, const int* triangles,
+                   const double* gradient, const int* unknown_of_vertex, double* by_column,
+                   double* rhs) {
+  const int nrhs = 3 * columns;
+  double* first = by_column;
+  double* second = by_column + nrhs;
+  for (int l = 0; l < lanes; ++l) {
+    for (int c = 0; c < 3; ++c)
+      for (int col = 0; col < columns; ++col) {
+        first[c * columns + col] = out[(col * 6 + 2 * c) * L + l];
+        second[c * columns + col] = out[(col * 6 + 2 * c + 1) * L + l];
+      }
+    for (int q = 0; q < 3; ++q) {
+      const int u = unknown_of_vertex[triangles[3 * l + q]];
+      if (u < 0) continue;
+      const double g0 = gradient[6 * l + 2 * q], g1 = gradient[6 * l + 2 * q + 1];
+      double* row = rhs + static_cast<size_t>(u) * nrhs;
+      for (int i = 0; i < nrhs; ++i) row[i] += g0 * first[i] + g1 * second[i];
+    }
+  }
+}
+
+// sum over triangles of |Q_j(x) - F_j|^2; blended: F in the batch layout of feature_space.h.
+MESHIK_SIMD_CLONES
+double residual_energy(const double* vertices, const int* triangles, const double* gradient,
+                       const double* blended, int num_triangles) {
+  double energy = 0.0;
+  for (int j = 0; j < num_triangles; ++j) {
+    const int* t = triangles + 3 * j;
+    const double* g = gradient + 6 * static_cast<size_t>(j);
+    const double* f = blended + static_cast<size_t>(j / L) * 6 * L + j % L;
+    const double* x0 = vertices + 3 * static_cast<size_t>(t[0]);
+    const double* x1 = vertices + 3 * static_cast<size_t>(t[1]);
+    const double* x2 = vertices + 3 * static_cast<size_t>(t[2]);
+    for (int c = 0; c < 3; ++c) {
+      const double r0 = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - f[(2 * c) * L];
+      const double r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - f[(2 * c + 1) * L];
+      energy += r0 * r0 + r1 * r1;
+    }
+  }
+  return energy;
+}
+
+// H^T Z (#E by #E) and H^T x0 (#E) over the unknowns and coordinates, from the right-hand sides
+// before (H) and after (x0, Z) the solve (#unknowns by 3 (#E + 1)).
+MESHIK_SIMD_CLONES
+void schur_products(const double* before, const double* after, int num_unknowns, int k,
+                    double* htz, double* htx) {
+  const int columns = k + 1;
+  for (int u = 0; u < num_unknowns; ++u)
+    for (int c = 0; c < 3; ++c) {
+      const size_t base = (static_cast<size_t>(u) * 3 + c) * columns;
+      const double* h = before + base + 1;
+      const double* z = after + base + 1;
+      const double x0 = after[base];
+      for (int a = 0; a < k; ++a) {
+        htx[a] += h[a] * x0;
+        for (int b = 0; b < k; ++b) htz[a * k + b] += h[a] * z[b];
+      }
+    }
+}
+
+}  // namespace
+
+PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system,
+                             FeatureSpace space, double regularization, const double* targets)
+    : set_(set),
+      system_(system),
+      space_(space),
+      regularization_(regularization),
+      targets_(targets),
+      coupling_(3 * static_cast<size_t>(system.num_unknowns())),
+      handle_offset_(6 * system.handle_triangles().size(), 0.0),
+      batch_has_handle_(set.features.num_batches, 0),
+      batch_out_(blend_batch_size(set.num_examples)),
+      scatter_rows_(6 * (set.num_examples + 1)),
+      blended_(6 * L * static_cast<size_t>(set.features.num_batches)),
+      jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
+      jts_lanes_(static_cast<size_t>(set.num_examples) * L) {
+  const int k = set.num_examples;
+  const size_t rhs_size = static_cast<size_t>(system.num_unknowns()) * 3 * (k + 1);
+  rhs_.resize(rhs_size);
+  rhs_before_solve_.resize(rhs_size);
+  system.handle_coupling(targets, coupling_.data());
+  // Handles' part of Q_j = sum over handle corners of target (x) g_q.
+  const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
+  for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {
+    const int j = system.handle_triangles()[slot];
+    batch_has_handle_[j / L] = 1;
+    const int* t = set.triangles.data() + 3 * j;
+    const double* g = set.frames.gradient.data() + 6 * static_cast<size_t>(j);
+    double* offset = handle_offset_.data() + 6 * slot;
+    for (int q = 0; q < 3; ++q) {
+      const int h = handle_of_vertex[t[q]];
+      if (h < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        offset[2 * c] += targets[3 * h + c] * g[2 * q];
+        offset[2 * c + 1] += targets[3 * h + c] * g[2 * q + 1];
+      }
+    }
+  }
+}
+
+void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacobian) {
+  const int k = set_.num_examples;
+  const int m = set_.num_triangles;
+  const int nrhs = 3 * columns;
+  const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
+  std::fill(rhs_.begin(), rhs_.begin() + static_cast<size_t>(system_.num_unknowns()) * nrhs, 0.0);
+  std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
+  std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
+  jts_.setZero(k);
+  double* out = batch_out_.data();
+  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+    blend_batch(set_.features, space_, weights, batch, out);
+    std::copy(out, out + 6 * L, blended_.data() + static_cast<size_t>(batch) * 6 * L);
+    const int first = batch * L;
+    const int lanes = std::min(L, m - first);
+    if (with_jacobian) {
+      accumulate_jacobian_products(out, k, jtj_lanes_.data(), jts_lanes_.data());
+      // J^T s = J^T F - J^T (handles' part of Q) on the few triangles touching a handle.
+      for (int l = 0; batch_has_handle_[batch] && l < lanes; ++l) {
+        const int slot = slot_of_triangle[first + l];
+        if (slot < 0) continue;
+        for (int a = 0; a < k; ++a)
+          for (int e = 0; e < 6; ++e)
+            jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
+      }
+    }
+    scatter_batch(out, columns, lanes, set_.triangles.data() + 3 * static_cast<size_t>(first),
+                  set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
+                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_.data());
+  }
+  for (int u = 0; u < system_.num_unknowns(); ++u)
+    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * nrhs + c * columns] -= coupling_[3 * u + c];
+  jtj_.resize(k, k);
+  for (int a = 0; a < k; ++a) {
+    for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
+    for (int b = 0; b <= a; ++b) {
+      double sum = 0.0;
+      for (int l = 0; l < L; ++l) sum += jtj_lanes_[(a * k + b) * L + l];
+      jtj_(a, b) = jtj_(b, a) = sum;
+    }
+  }
+}
+
+void PoseEvaluator::gather_vertices(int columns, double* vertices) const {
+  const std::vector<int>& unknown_of_vertex = system_.unknown_of_vertex();
+  const std::vector<int>& handle_of_vertex = system_.handle_of_vertex();
+  for (int v = 0; v < set_.num_vertices; ++v) {
+    const double* from = set_.rest.data() + 3 * static_cast<size_t>(v);
+    double solved[3];
+    if (unknown_of_vertex[v] >= 0) {
+      const double* row = rhs_.data() + static_cast<size_t>(unknown_of_vertex[v]) * 3 * columns;
+      solved[0] = row[0];
+      solved[1] = row[columns];
+      solved[2] = row[2 * columns];
+      from = solved;
+    } else if (handle_of_vertex[v] >= 0) {
+      from = targets_ + 3 * static_cast<size_t>(handle_of_vertex[v]);
+    }
+    std::copy(from, from + 3, vertices + 3 * static_cast<size_t>(v));
+  }
+}
+
+void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+  const int k = set_.num_examples;
+  const int columns = with_jacobian ? k + 1 : 1;
+  const int nrhs = 3 * columns;
+  const int n_unknowns = system_.num_unknowns();
+  assemble(weights, columns, with_jacobian);
+  const size_t used = static_cast<size_t>(n_unknowns) * nrhs;
+  if (with_jacobian) std::copy(rhs_.begin(), rhs_.begin() + used, rhs_before_solve_.begin());
+  if (n_unknowns > 0) system_.solve(rhs_.data(), nrhs);
+
+  out.weights.assign(weights, weights + k);
+  out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
+  gather_vertices(columns, out.vertices.data());
+  const Eigen::Map<const Eigen::VectorXd> w(weights, k);
+  out.energy = residual_energy(out.vertices.data(), set_.triangles.data(), set_.frames.gradient.data(),
+                               blended_.data(), set_.num_triangles) +
+               regularization_ * w.squaredNorm();
+  if (!with_jacobian) return;
+
+  Eigen::MatrixXd htz = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
+  schur_products(rhs_before_solve_.data(), rhs_.data(), n_unknowns, k, htz.data(), htx.data());
+  out.schur = jtj_ - 0.5 * (htz + htz.transpose());
+  out.schur.diagonal().array() += regularization_;
+  out.step_rhs = htx - jts_ - regularization_ * w;
+}
+
+}  // namespace meshik

@@ -1,0 +1,63 @@
+// One evaluation of the reduced energy at given weights: phi(w) = min_x E(x, w), with
+//   E(x, w) = sum_j |Q_j(x) - F_j(w)|^2 + kappa |w|^2      (fourth vertices eliminated)
+// where the handles' rows of x are fixed at their targets. It blends the features, assembles
+// the right-hand sides [G'^T s | G'^T J] of all 3 coordinates (3 (#E + 1) columns, row-major),
+// solves them with the factor in one pass, and forms the Gauss-Newton system for a weight step:
+//   S delta = g,  S = J^T J - H^T K'^{-1} H + kappa I,  g = H^T x0 - J^T s - kappa w,
+// with H = G'^T J, s = F(w) - (handles' part of Q) and x0 = K'^{-1} G'^T s (DESIGN.md section 2).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "example_set_impl.h"
+#include "pose_system.h"
+
+namespace meshik {
+
+struct PoseEvaluation {
+  std::vector<double> weights;   // #E: the weights w evaluated
+  std::vector<double> vertices;  // #V by 3: x*(w), handles at their targets
+  double energy = 0.0;           // phi(w), regularization included
+  Eigen::MatrixXd schur;         // #E by #E: S (only with the Jacobian)
+  Eigen::VectorXd step_rhs;      // #E: g = -(1/2) d phi / dw (only with the Jacobian)
+};
+
+class PoseEvaluator {
+ public:
+  // set / system: the example set and the factored system of its handles (both outlive this);
+  // targets: #H by 3 handle positions; regularization: kappa >= 0.
+  PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system, FeatureSpace space,
+                double regularization, const double* targets);
+
+  // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
+  void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
+
+ private:
+  // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
+  // G'^T F and G'^T J into rhs_ (columns per coordinate: `columns`).
+  void assemble(const double* weights, int columns, bool with_jacobian);
+  // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
+  void gather_vertices(int columns, double* vertices) const;
+
+  const ExampleSet::Impl& set_;
+  const PoseSystem& system_;
+  FeatureSpace space_;
+  double regularization_;
+  const double* targets_;
+  std::vector<double> coupling_;         // #unknowns by 3: K_fh x_h
+  std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
+  std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
+  std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
+  std::vector<double> scatter_rows_;     // 2 by 3 (#E + 1): one triangle's blocks, by column
+  std::vector<double> blended_;          // #batches by 6 by kLanes: F_j(w)
+  std::vector<double> rhs_;              // #unknowns by 3 (#E + 1)
+  std::vector<double> rhs_before_solve_; // copy of rhs_ (H = G'^T J is needed after the solve)
+  std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
+  std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
+  Eigen::MatrixXd jtj_;                  // #E by #E
+  Eigen::VectorXd jts_;                  // #E: J^T s
+};
+
+}  // namespace meshik

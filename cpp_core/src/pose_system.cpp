@@ -1,0 +1,89 @@
+// Assembly of K' and K_fh for a handle set, and its sparse Cholesky factorization.
+#include "pose_system.h"
+
+#include <algorithm>
+#include <string>
+
+#include "example_set_impl.h"
+
+namespace meshik {
+
+PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
+                       const ProgressCallback& progress)
+    : handles_(handles) {
+  const int n = set.num_vertices;
+  const CscMatrix& k = set.normal_matrix;
+  handle_of_vertex_.assign(n, -1);
+  for (size_t h = 0; h < handles.size(); ++h) handle_of_vertex_[handles[h]] = static_cast<int>(h);
+  unknown_of_vertex_.assign(n, -1);
+  for (int v = 0; v < n; ++v)
+    if (handle_of_vertex_[v] < 0 && set.components.component_of_vertex[v] >= 0)
+      unknown_of_vertex_[v] = num_unknowns_++;
+
+  // K' (lower triangle): the unknowns keep the vertices' order, so row >= col is preserved.
+  CscMatrix lower;
+  lower.rows = lower.cols = num_unknowns_;
+  lower.col_start.reserve(num_unknowns_ + 1);
+  lower.row_index.reserve(k.row_index.size() / 2 + n);
+  lower.values.reserve(k.row_index.size() / 2 + n);
+  lower.col_start.push_back(0);
+  for (int v = 0; v < n; ++v) {
+    const int col = unknown_of_vertex_[v];
+    if (col < 0) continue;
+    for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
+      const int row = unknown_of_vertex_[k.row_index[s]];
+      if (row >= col) {
+        lower.row_index.push_back(row);
+        lower.values.push_back(k.values[s]);
+      }
+    }
+    lower.col_start.push_back(static_cast<int>(lower.row_index.size()));
+  }
+
+  // K_fh: the handles' columns restricted to the unknowns' rows.
+  coupling_start_.assign(1, 0);
+  for (int v : handles) {
+    for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
+      const int row = unknown_of_vertex_[k.row_index[s]];
+      if (row < 0) continue;
+      coupling_row_.push_back(row);
+      coupling_value_.push_back(k.values[s]);
+    }
+    coupling_start_.push_back(static_cast<int>(coupling_row_.size()));
+  }
+
+  handle_triangle_slot_.assign(set.num_triangles, -1);
+  for (int j = 0; j < set.num_triangles; ++j) {
+    const int* t = set.triangles.data() + 3 * j;
+    if (handle_of_vertex_[t[0]] >= 0 || handle_of_vertex_[t[1]] >= 0 || handle_of_vertex_[t[2]] >= 0) {
+      handle_triangle_slot_[j] = static_cast<int>(handle_triangles_.size());
+      handle_triangles_.push_back(j);
+    }
+  }
+
+  if (progress && !progress(0.0, "factorizing"))
+    throw Cancelled("cancelled before factorizing");
+  try {
+    if (num_unknowns_ > 0) factor_.compute(lower);
+  } catch (const NotPositiveDefinite& e) {
+    throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +
+                     e.what());
+  }
+  if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
+}
+
+void PoseSystem::handle_coupling(const double* targets, double* out) const {
+  std::fill(out, out + 3 * static_cast<size_t>(num_unknowns_), 0.0);
+  for (size_t h = 0; h < handles_.size(); ++h) {
+    const double* x = targets + 3 * h;
+    for (int s = coupling_start_[h]; s < coupling_start_[h + 1]; ++s) {
+      double* row = out + 3 * static_cast<size_t>(coupling_row_[s]);
+      const double value = coupling_value_[s];
+      row[0] += value * x[0];
+      row[1] += value * x[1];
+      row[2] += value * x[2];
+    }
+  }
+}
+
+}  // namespace meshik

@@ -1,0 +1,58 @@
+// The factored normal matrix of one handle set: K' = G'^T G' on the free vertices (fourth
+// vertices eliminated, handles' columns removed), the coupling K_fh that moves the handles'
+// contribution to the right-hand side, and the maps between vertices and unknowns.
+//
+// Built once per handle set; moving the handles only changes right-hand sides.
+#pragma once
+
+#include <vector>
+
+#include "meshik/meshik.h"
+#include "meshik/sparse_cholesky.h"
+
+namespace meshik {
+
+class PoseSystem {
+ public:
+  // set: the validated example set; handles: validated distinct vertex indices (every component
+  // of the triangles holds one). Assembles K', analyses and factors it.
+  PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
+             const ProgressCallback& progress = {});
+
+  // #V: the unknown (row of K') of each vertex, or -1 for a handle or a vertex used by no triangle.
+  const std::vector<int>& unknown_of_vertex() const { return unknown_of_vertex_; }
+  int num_unknowns() const { return num_unknowns_; }
+  const std::vector<int>& handles() const { return handles_; }
+  // #V: the index in handles() of each vertex, or -1.
+  const std::vector<int>& handle_of_vertex() const { return handle_of_vertex_; }
+
+  // Triangles with at least one handle corner, and for each #F triangle its index in that list
+  // (or -1).
+  const std::vector<int>& handle_triangles() const { return handle_triangles_; }
+  const std::vector<int>& handle_triangle_slot() const { return handle_triangle_slot_; }
+
+  // out (#unknowns by 3, row-major) = K_fh x_h: the handles' coupling to the free vertices for
+  // handle positions targets (#H by 3, row-major).
+  void handle_coupling(const double* targets, double* out) const;
+
+  // Solves K' X = B in place; b: #unknowns by nrhs row-major.
+  void solve(double* b, int nrhs) const { factor_.solve(b, nrhs); }
+
+  long long factor_nonzeros() const { return factor_.factor_nonzeros(); }
+
+ private:
+  std::vector<int> handles_;
+  std::vector<int> handle_of_vertex_;
+  std::vector<int> unknown_of_vertex_;
+  int num_unknowns_ = 0;
+  // K_fh by handle: entries coupling_row_[s], coupling_value_[s] for s in
+  // [coupling_start_[h], coupling_start_[h+1]).
+  std::vector<int> coupling_start_;
+  std::vector<int> coupling_row_;
+  std::vector<double> coupling_value_;
+  std::vector<int> handle_triangles_;
+  std::vector<int> handle_triangle_slot_;
+  SparseCholesky factor_;
+};
+
+}  // namespace meshik

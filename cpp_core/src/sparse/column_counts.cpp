@@ -1,0 +1,68 @@
+#include "sparse/column_counts.h"
+
+namespace meshik::sparse {
+
+namespace {
+
+// first[j]: the postorder index of the first descendant of j (j included).
+// Returns n entries.
+std::vector<int> first_descendants(const std::vector<int>& parent, const std::vector<int>& post) {
+  const int n = static_cast<int>(parent.size());
+  std::vector<int> first(n, -1);
+  for (int k = 0; k < n; ++k)
+    for (int j = post[k]; j != -1 && first[j] == -1; j = parent[j]) first[j] = k;
+  return first;
+}
+
+// Root of i's set in the union-find forest `ancestor` (ancestor[r] == r for a root), with
+// path compression.
+int find_root(std::vector<int>& ancestor, int i) {
+  int root = i;
+  while (ancestor[root] != root) root = ancestor[root];
+  while (ancestor[i] != root) {
+    const int next = ancestor[i];
+    ancestor[i] = root;
+    i = next;
+  }
+  return root;
+}
+
+}  // namespace
+
+std::vector<int> column_counts(const Pattern& lower, const std::vector<int>& parent,
+                               const std::vector<int>& post) {
+  const int n = lower.n;
+  const std::vector<int> first = first_descendants(parent, post);
+  // delta[j]: count contributions that sum over the subtree of j to nnz(L(:, j)).
+  std::vector<int> delta(n, 0);
+  for (int j = 0; j < n; ++j) delta[j] = post[first[j]] == j ? 1 : 0;  // leaves of the tree
+  // Per row i: the largest `first` of a leaf of row subtree i seen so far, and that leaf.
+  std::vector<int> max_first(n, -1), previous_leaf(n, -1);
+  std::vector<int> ancestor(n);
+  for (int j = 0; j < n; ++j) ancestor[j] = j;
+
+  for (int k = 0; k < n; ++k) {
+    const int j = post[k];
+    if (parent[j] != -1) --delta[parent[j]];
+    for (int p = lower.col_start[j]; p < lower.col_start[j + 1]; ++p) {
+      const int i = lower.row_index[p];
+      // j is a leaf of row subtree i iff A(i, j) != 0, i > j, and no earlier leaf of that
+      // subtree lies inside j's subtree (first[j] > max_first[i]).
+      if (i <= j || first[j] <= max_first[i]) continue;
+      max_first[i] = first[j];
+      const int prev = previous_leaf[i];
+      previous_leaf[i] = j;
+      ++delta[j];
+      // For every leaf but the first, the least common ancestor with the previous leaf was
+      // counted twice.
+      if (prev != -1) --delta[find_root(ancestor, prev)];
+    }
+    if (parent[j] != -1) ancestor[j] = parent[j];
+  }
+  // Sum over subtrees: children have smaller indices than their parents.
+  for (int j = 0; j < n; ++j)
+    if (parent[j] != -1) delta[parent[j]] += delta[j];
+  return delta;
+}
+
+}  // namespace meshik::sparse

@@ -1,0 +1,75 @@
+// Rest frames, plane bases and in-plane gradient coefficients of every triangle.
+#include "triangle_frames.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+namespace meshik {
+
+namespace {
+
+Eigen::Vector3d corner(const double* vertices, const int* triangles, int j, int q) {
+  const double* p = vertices + 3 * static_cast<size_t>(triangles[3 * j + q]);
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+}  // namespace
+
+Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
+  const Eigen::Vector3d n = e1.cross(e2);
+  const double length = n.norm();
+  return length > 0.0 ? Eigen::Vector3d(n / std::sqrt(length)) : Eigen::Vector3d::Zero();
+}
+
+TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
+                                       int num_triangles) {
+  TriangleFrames frames;
+  frames.num_triangles = num_triangles;
+  frames.gradient.resize(6 * static_cast<size_t>(num_triangles));
+  frames.plane_basis.resize(6 * static_cast<size_t>(num_triangles));
+  frames.frame_inverse.resize(9 * static_cast<size_t>(num_triangles));
+  for (int j = 0; j < num_triangles; ++j) {
+    const Eigen::Vector3d a = corner(rest, triangles, j, 0);
+    const Eigen::Vector3d e1 = corner(rest, triangles, j, 1) - a;
+    const Eigen::Vector3d e2 = corner(rest, triangles, j, 2) - a;
+    Eigen::Matrix3d frame;
+    frame << e1, e2, fourth_vertex_offset(e1, e2);
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(frames.frame_inverse.data() + 9 * j) =
+        frame.inverse();
+
+    // U = [u1 u2]: u1 along e1, u2 = normal x u1.
+    const Eigen::Vector3d u1 = e1.normalized();
+    const Eigen::Vector3d u2 = e1.cross(e2).normalized().cross(u1);
+    Eigen::Map<Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> basis(frames.plane_basis.data() + 6 * j);
+    basis << u1, u2;
+
+    // Edges in plane coordinates E = U^T [e1 e2] (upper triangular); Q(X) = [x2-x1, x3-x1] E^{-1},
+    // so g_2 and g_3 are the rows of E^{-1}.
+    Eigen::Matrix2d edges;
+    edges << e1.dot(u1), e2.dot(u1), 0.0, e2.dot(u2);
+    const Eigen::Matrix2d inverse = edges.inverse();
+    double* g = frames.gradient.data() + 6 * j;
+    g[2] = inverse(0, 0);
+    g[3] = inverse(0, 1);
+    g[4] = inverse(1, 0);
+    g[5] = inverse(1, 1);
+    g[0] = -(g[2] + g[4]);
+    g[1] = -(g[3] + g[5]);
+  }
+  return frames;
+}
+
+Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
+                                     const double* vertices, int j) {
+  const Eigen::Vector3d a = corner(vertices, triangles, j, 0);
+  const Eigen::Vector3d e1 = corner(vertices, triangles, j, 1) - a;
+  const Eigen::Vector3d e2 = corner(vertices, triangles, j, 2) - a;
+  Eigen::Matrix3d deformed;
+  deformed << e1, e2, fourth_vertex_offset(e1, e2);
+  return deformed * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+                        frames.frame_inverse.data() + 9 * static_cast<size_t>(j));
+}
+
+}  // namespace meshik

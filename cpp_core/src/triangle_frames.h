@@ -1,0 +1,48 @@
+// Per-triangle rest geometry: the frame with the fourth vertex, its inverse, an orthonormal basis
+// of the triangle's plane and the in-plane gradient coefficients of its corners.
+//
+// Notation (DESIGN.md section 2): for corners v1, v2, v3 the fourth vertex is
+//   v4 = v1 + (v2 - v1) x (v3 - v1) / sqrt(|(v2 - v1) x (v3 - v1)|),
+// the frame is V = [v2 - v1, v3 - v1, v4 - v1] and a deformed copy's gradient is T = V~ V^{-1}.
+//
+// Eliminating the fourth vertex: T's component along the rest normal is matched exactly by the
+// deformed fourth vertex, so only T U matters, with U (3 by 2) an orthonormal basis of the rest
+// plane. T U equals the in-plane gradient Q(X) = sum_q X[corner q] g_q^T of the corner positions
+// alone (g_q: 2-vectors, g_1 = -(g_2 + g_3)).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace meshik {
+
+struct TriangleFrames {
+  int num_triangles = 0;
+  // #F by 3 corners by 2: in-plane gradient coefficient g_q of each corner.
+  std::vector<double> gradient;
+  // #F by 3 by 2 row-major: U, whose columns are an orthonormal basis of the rest plane.
+  std::vector<double> plane_basis;
+  // #F by 3 by 3 row-major: V^{-1}, the inverse rest frame (fourth vertex included).
+  std::vector<double> frame_inverse;
+};
+
+// rest: #V by 3 positions; triangles: #F by 3 indices of non-degenerate triangles.
+TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles);
+
+// (e1 x e2) / sqrt(|e1 x e2|): the fourth vertex minus the first; zero for a degenerate triangle.
+Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2);
+
+// The deformation gradient T = V~ V^{-1} (3 by 3) of triangle j of frames, deformed to corner
+// positions taken from vertices (#V by 3) through triangles (#F by 3).
+Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
+                                     const double* vertices, int j);
+
+// Eigen views of one triangle's blocks.
+inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> plane_basis_of(
+    const TriangleFrames& frames, int j) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>>(
+      frames.plane_basis.data() + 6 * static_cast<size_t>(j));
+}
+
+}  // namespace meshik

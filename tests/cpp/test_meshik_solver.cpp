@@ -1,0 +1,200 @@
+// The solver on a generated example set (a tube that bends, twists and bulges): rest handles give
+// the rest pose, example handles give the example and its weight vector, Gauss-Newton lowers the
+// energy every iteration, warm starts, cancellation, isolated vertices and regularization.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "test_meshik_support.h"
+
+namespace {
+
+using meshik::ExampleSet;
+using meshik::FeatureSpace;
+using meshik::SolveResult;
+using meshik::Solver;
+using meshik::SolverOptions;
+using meshik_test::ExampleMeshes;
+
+class TubeSolver : public ::testing::TestWithParam<FeatureSpace> {
+ protected:
+  void SetUp() override {
+    meshes_ = meshik_test::make_tube_examples();
+    set_ = std::make_shared<ExampleSet>(meshes_.view(), meshes_.example_pointers());
+    handles_ = meshik_test::farthest_point_handles(meshes_.rest, 8);
+    diagonal_ = meshik_test::bounding_box_diagonal(meshes_.rest);
+  }
+  Solver make_solver(const SolverOptions& extra = {}) const {
+    SolverOptions options = extra;
+    options.feature_space = GetParam();
+    return Solver(set_, handles_, options);
+  }
+  std::vector<double> targets_from(const std::vector<double>& pose) const {
+    return meshik_test::gather_rows(pose, handles_);
+  }
+  ExampleMeshes meshes_;
+  std::shared_ptr<ExampleSet> set_;
+  std::vector<int> handles_;
+  double diagonal_ = 0.0;
+};
+
+TEST_P(TubeSolver, RestHandlesGiveTheRestPose) {
+  const Solver solver = make_solver();
+  const SolveResult result = solver.solve(targets_from(meshes_.rest).data());
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, meshes_.rest), 1e-10 * diagonal_);
+  for (double w : result.weights) EXPECT_EQ(w, 0.0);
+}
+
+TEST_P(TubeSolver, ExampleHandlesReproduceTheExampleAndItsWeights) {
+  const Solver solver = make_solver();
+  for (size_t i = 0; i < meshes_.examples.size(); ++i) {
+    const SolveResult result = solver.solve(targets_from(meshes_.examples[i]).data());
+    EXPECT_TRUE(result.converged) << "example " << i;
+    EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, meshes_.examples[i]),
+              1e-6 * diagonal_)
+        << "example " << i;
+    for (size_t e = 0; e < result.weights.size(); ++e)
+      EXPECT_NEAR(result.weights[e], e == i ? 1.0 : 0.0, 1e-6) << "example " << i;
+    EXPECT_LT(result.residual, 1e-12);
+  }
+}
+
+// Targets that no blend reproduces exactly: the bend, a twist and a stretch of the handles.
+std::vector<double> unreachable_targets(const ExampleMeshes& meshes, const std::vector<int>& handles) {
+  std::vector<double> targets = meshik_test::gather_rows(meshes.examples[0], handles);
+  for (size_t h = 0; h < handles.size(); ++h) {
+    const double* twist = &meshes.examples[1][3 * handles[h]];
+    targets[3 * h] += 0.7 * twist[0] + 0.2;
+    targets[3 * h + 1] += 0.3 * twist[1];
+    targets[3 * h + 2] *= 1.1;
+  }
+  return targets;
+}
+
+TEST_P(TubeSolver, EveryIterationLowersTheEnergyAndTheResidualIsTheLastEnergy) {
+  const Solver solver = make_solver();
+  const SolveResult result = solver.solve(unreachable_targets(meshes_, handles_).data());
+  ASSERT_GE(result.energies.size(), 2u);
+  for (size_t it = 1; it < result.energies.size(); ++it)
+    EXPECT_LE(result.energies[it], result.energies[it - 1]) << "iteration " << it;
+  EXPECT_LT(result.energies.back(), result.energies.front());
+  EXPECT_EQ(result.residual, result.energies.back());
+  EXPECT_TRUE(result.converged);
+  EXPECT_GT(result.residual, 1e-6);  // the targets are indeed out of reach
+}
+
+TEST_P(TubeSolver, WarmStartFromTheSolutionStopsAtOnceWithTheSamePose) {
+  const Solver solver = make_solver();
+  const std::vector<double> targets = unreachable_targets(meshes_, handles_);
+  const SolveResult cold = solver.solve(targets.data());
+  const SolveResult warm = solver.solve(targets.data(), cold.weights.data());
+  EXPECT_LE(warm.iterations, 1);
+  EXPECT_LT(warm.iterations, cold.iterations);
+  EXPECT_LT(meshik_test::max_vertex_distance(warm.vertices, cold.vertices), 1e-6 * diagonal_);
+  EXPECT_LE(warm.residual, cold.residual * (1.0 + 1e-9));
+}
+
+TEST_P(TubeSolver, MovingHandlesReusesTheFactorAndMeetsEveryTarget) {
+  const Solver solver = make_solver();
+  for (const std::vector<double>* pose : {&meshes_.examples[0], &meshes_.rest, &meshes_.examples[2]}) {
+    const std::vector<double> targets = targets_from(*pose);
+    const SolveResult result = solver.solve(targets.data());
+    EXPECT_EQ(meshik_test::gather_rows(result.vertices, handles_), targets);
+    EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, *pose), 1e-6 * diagonal_);
+  }
+}
+
+TEST_P(TubeSolver, ZeroIterationsReturnsThePoseOfTheInitialWeights) {
+  SolverOptions options;
+  options.max_iterations = 0;
+  const Solver solver = make_solver(options);
+  const double example_one[3] = {0.0, 1.0, 0.0};
+  const SolveResult result =
+      solver.solve(targets_from(meshes_.examples[1]).data(), example_one);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, meshes_.examples[1]), 1e-6 * diagonal_);
+}
+
+TEST_P(TubeSolver, RegularizationPullsTheWeightsTowardsTheRestPose) {
+  SolverOptions options;
+  options.weight_regularization = 50.0;
+  const Solver regularized = make_solver(options);
+  const Solver free = make_solver();
+  const std::vector<double> targets = targets_from(meshes_.examples[0]);
+  const SolveResult a = regularized.solve(targets.data());
+  const SolveResult b = free.solve(targets.data());
+  EXPECT_LT(a.weights[0], b.weights[0] - 0.01);
+  EXPECT_GT(a.weights[0], 0.0);
+  double penalty = 0.0;
+  for (double w : a.weights) penalty += options.weight_regularization * w * w;
+  EXPECT_GE(a.residual, penalty);  // the energy includes kappa |w|^2
+}
+
+TEST_P(TubeSolver, ProgressReportsIterationsAndCancels) {
+  const Solver solver = make_solver();
+  const std::vector<double> targets = unreachable_targets(meshes_, handles_);
+  std::vector<double> fractions;
+  solver.solve(targets.data(), nullptr, [&](double fraction, const std::string& stage) {
+    EXPECT_NE(stage.find("Gauss-Newton"), std::string::npos);
+    fractions.push_back(fraction);
+    return true;
+  });
+  ASSERT_FALSE(fractions.empty());
+  for (size_t i = 1; i < fractions.size(); ++i) EXPECT_GT(fractions[i], fractions[i - 1]);
+  EXPECT_THROW(solver.solve(targets.data(), nullptr, [](double, const std::string&) { return false; }),
+               meshik::Cancelled);
+}
+
+TEST_P(TubeSolver, BlendAtZeroIsTheRestAndAtAUnitVectorIsThatExample) {
+  const std::vector<double> zero(3, 0.0);
+  EXPECT_LT(meshik_test::max_vertex_distance(set_->blend(zero.data(), GetParam()), meshes_.rest),
+            1e-9 * diagonal_);
+  for (size_t i = 0; i < meshes_.examples.size(); ++i) {
+    std::vector<double> unit(3, 0.0);
+    unit[i] = 1.0;
+    EXPECT_LT(meshik_test::max_vertex_distance(set_->blend(unit.data(), GetParam()),
+                                               meshes_.examples[i]),
+              1e-9 * diagonal_)
+        << "example " << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothFeatureSpaces, TubeSolver,
+                         ::testing::Values(FeatureSpace::kNonlinear, FeatureSpace::kLinear),
+                         [](const auto& info) {
+                           return info.param == FeatureSpace::kNonlinear ? "Nonlinear" : "Linear";
+                         });
+
+TEST(Solver, VerticesUsedByNoTriangleKeepTheirRestPosition) {
+  ExampleMeshes meshes = meshik_test::make_tube_examples();
+  const ExampleMeshes tube = meshes;
+  const std::vector<int> handles = meshik_test::farthest_point_handles(tube.rest, 6);
+  const std::vector<double> loose = {9.0, 8.0, 7.0};
+  meshes.rest.insert(meshes.rest.end(), loose.begin(), loose.end());
+  for (auto& e : meshes.examples) e.insert(e.end(), {1.0, 2.0, 3.0});
+  const auto set = std::make_shared<ExampleSet>(meshes.view(), meshes.example_pointers());
+  const Solver solver(set, handles);
+  const SolveResult result =
+      solver.solve(meshik_test::gather_rows(meshes.examples[0], handles).data());
+  ASSERT_EQ(result.vertices.size(), meshes.rest.size());
+  EXPECT_EQ(std::vector<double>(result.vertices.end() - 3, result.vertices.end()), loose);
+  const std::vector<double> on_tube(result.vertices.begin(), result.vertices.end() - 3);
+  EXPECT_LT(meshik_test::max_vertex_distance(on_tube, tube.examples[0]), 1e-9);
+  const std::vector<double> zero(3, 0.0);
+  const std::vector<double> blended = set->blend(zero.data());
+  EXPECT_EQ(std::vector<double>(blended.end() - 3, blended.end()), loose);
+}
+
+TEST(Solver, WithoutExamplesTheRestShapeIsKept) {
+  const ExampleMeshes meshes = meshik_test::make_tube_examples();
+  const auto set = std::make_shared<ExampleSet>(meshes.view(), std::vector<const double*>{});
+  const std::vector<int> handles = meshik_test::farthest_point_handles(meshes.rest, 5);
+  const Solver solver(set, handles);
+  const SolveResult result = solver.solve(meshik_test::gather_rows(meshes.rest, handles).data());
+  EXPECT_TRUE(result.weights.empty());
+  EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, meshes.rest), 1e-10);
+}
+
+}  // namespace

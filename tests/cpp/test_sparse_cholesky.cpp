@@ -1,0 +1,230 @@
+// SparseCholesky against Eigen's dense LLT on random SPD matrices, on grid Laplacians, with
+// many right-hand sides, refactorization, and its errors.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <string>
+
+#include "meshik/sparse_cholesky.h"
+#include "sparse_test_matrices.h"
+
+using meshik::CscMatrix;
+using meshik::SparseCholesky;
+using namespace meshik_test;
+
+namespace {
+
+// Solves the dense SPD system with `nrhs` random right-hand sides through SparseCholesky and
+// through Eigen's dense LLT; expects the same solutions and a small residual.
+void expect_matches_dense(const Eigen::MatrixXd& dense, int nrhs, unsigned seed) {
+  const int n = static_cast<int>(dense.rows());
+  const CscMatrix a = lower_from_dense(dense);
+  SparseCholesky chol;
+  chol.compute(a);
+  ASSERT_EQ(chol.size(), n);
+  const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, seed);
+  std::vector<double> x = b;
+  chol.solve(x.data(), nrhs);
+  // Eigen: column-major n x nrhs from our row-major buffer.
+  const Eigen::MatrixXd b_dense =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          b.data(), n, nrhs);
+  const Eigen::MatrixXd x_dense = dense.llt().solve(b_dense);
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int r = 0; r < nrhs; ++r)
+      worst = std::max(worst, std::abs(x[static_cast<size_t>(i) * nrhs + r] - x_dense(i, r)));
+  EXPECT_LT(worst, 1e-10 * std::max(1.0, x_dense.cwiseAbs().maxCoeff())) << "n=" << n;
+  EXPECT_LT(relative_residual(a, x, b, nrhs), 1e-10) << "n=" << n;
+}
+
+}  // namespace
+
+TEST(SparseCholesky, RandomMatricesMatchDenseLLT) {
+  unsigned seed = 1;
+  for (int n : {1, 2, 3, 4, 7, 16, 33, 64, 120, 200})
+    for (double density : {0.0, 0.02, 0.1, 0.3, 1.0}) {
+      SCOPED_TRACE("n=" + std::to_string(n) + " density=" + std::to_string(density));
+      expect_matches_dense(random_spd(n, density, seed), 3, seed + 1000);
+      ++seed;
+    }
+}
+
+TEST(SparseCholesky, DiagonalMatrix) {
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(50, 50);
+  for (int i = 0; i < 50; ++i) d(i, i) = 1.0 + i;
+  expect_matches_dense(d, 2, 7);
+  SparseCholesky chol;
+  chol.compute(lower_from_dense(d));
+  EXPECT_EQ(chol.factor_nonzeros(), 50);
+}
+
+TEST(SparseCholesky, DenseMatrixHasFullFactor) {
+  const int n = 40;
+  const Eigen::MatrixXd dense = random_spd(n, 1.0, 11);
+  expect_matches_dense(dense, 5, 12);
+  SparseCholesky chol;
+  chol.compute(lower_from_dense(dense));
+  EXPECT_EQ(chol.factor_nonzeros(), n * (n + 1) / 2);
+}
+
+TEST(SparseCholesky, DisconnectedBlocks) {
+  const int blocks = 5, block = 17;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(blocks * block, blocks * block);
+  for (int k = 0; k < blocks; ++k)
+    dense.block(k * block, k * block, block, block) = random_spd(block, 0.4, 20 + k);
+  expect_matches_dense(dense, 4, 30);
+}
+
+TEST(SparseCholesky, EmptyMatrix) {
+  CscMatrix a;
+  a.col_start = {0};
+  SparseCholesky chol;
+  chol.compute(a);
+  EXPECT_EQ(chol.size(), 0);
+  EXPECT_EQ(chol.factor_nonzeros(), 0);
+  chol.solve(nullptr, 3);
+}
+
+TEST(SparseCholesky, GridLaplacianResidual) {
+  const CscMatrix a = grid_laplacian(70, 60, 1e-2);
+  SparseCholesky chol;
+  chol.compute(a);
+  const int nrhs = 15;
+  const std::vector<double> b = random_values(static_cast<size_t>(a.rows) * nrhs, 3);
+  std::vector<double> x = b;
+  chol.solve(x.data(), nrhs);
+  EXPECT_LT(relative_residual(a, x, b, nrhs), 1e-10);
+  // Fill-reducing ordering: far below the dense triangle, above nnz(A).
+  EXPECT_GT(chol.factor_nonzeros(), static_cast<long long>(a.row_index.size()));
+  EXPECT_LT(chol.factor_nonzeros(), 40LL * a.rows);
+}
+
+TEST(SparseCholesky, ManyRightHandSidesEqualOneAtATime) {
+  const CscMatrix a = grid_laplacian(23, 19, 0.1);
+  SparseCholesky chol;
+  chol.compute(a);
+  const int n = a.rows;
+  for (int nrhs : {1, 2, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33}) {
+    const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 100 + nrhs);
+    std::vector<double> together = b;
+    chol.solve(together.data(), nrhs);
+    for (int r = 0; r < nrhs; ++r) {
+      std::vector<double> single(n);
+      for (int i = 0; i < n; ++i) single[i] = b[static_cast<size_t>(i) * nrhs + r];
+      chol.solve(single.data(), 1);
+      for (int i = 0; i < n; ++i)
+        ASSERT_NEAR(together[static_cast<size_t>(i) * nrhs + r], single[i], 1e-12 * (1 + std::abs(single[i])))
+            << "nrhs=" << nrhs << " rhs " << r << " row " << i;
+    }
+  }
+}
+
+TEST(SparseCholesky, RefactorizeWithNewValuesSamePattern) {
+  CscMatrix a = grid_laplacian(30, 25, 0.5);
+  SparseCholesky chol;
+  chol.analyze(a);
+  const long long nnz = chol.factor_nonzeros();
+  for (int round = 0; round < 3; ++round) {
+    // New values: scale the off-diagonals and raise the shift.
+    const std::vector<double> noise = random_values(a.values.size(), 50 + round);
+    for (int j = 0; j < a.cols; ++j)
+      for (int p = a.col_start[j]; p < a.col_start[j + 1]; ++p)
+        if (a.row_index[p] != j) a.values[p] = -0.5 - 0.4 * noise[p];
+    for (int j = 0; j < a.cols; ++j) a.values[a.col_start[j]] = 4.0 + round;  // diagonal first
+    chol.factorize(a);
+    EXPECT_EQ(chol.factor_nonzeros(), nnz);
+    const std::vector<double> b = random_values(static_cast<size_t>(a.rows) * 2, 60 + round);
+    std::vector<double> x = b;
+    chol.solve(x.data(), 2);
+    EXPECT_LT(relative_residual(a, x, b, 2), 1e-10) << "round " << round;
+  }
+}
+
+TEST(SparseCholesky, EntriesAboveTheDiagonalAreIgnored) {
+  const Eigen::MatrixXd dense = random_spd(60, 0.1, 77);
+  const CscMatrix lower = lower_from_dense(dense);
+  // Full storage of the same matrix, with garbage values above the diagonal.
+  CscMatrix full;
+  full.rows = full.cols = 60;
+  full.col_start.push_back(0);
+  for (int j = 0; j < 60; ++j) {
+    for (int i = 0; i < 60; ++i)
+      if (i == j || dense(i, j) != 0.0) {
+        full.row_index.push_back(i);
+        full.values.push_back(i < j ? 1e6 : dense(i, j));
+      }
+    full.col_start.push_back(static_cast<int>(full.row_index.size()));
+  }
+  SparseCholesky from_lower, from_full;
+  from_lower.compute(lower);
+  from_full.compute(full);
+  std::vector<double> x1 = random_values(60, 5), x2 = x1;
+  from_lower.solve(x1.data(), 1);
+  from_full.solve(x2.data(), 1);
+  for (int i = 0; i < 60; ++i) EXPECT_NEAR(x1[i], x2[i], 1e-12);
+}
+
+TEST(SparseCholesky, IndefiniteMatrixNamesTheColumn) {
+  // Diagonal with one negative entry: every ordering fails at that column.
+  Eigen::MatrixXd d = Eigen::MatrixXd::Identity(20, 20);
+  d(13, 13) = -2.0;
+  SparseCholesky chol;
+  try {
+    chol.compute(lower_from_dense(d));
+    FAIL() << "expected NotPositiveDefinite";
+  } catch (const meshik::NotPositiveDefinite& e) {
+    EXPECT_NE(std::string(e.what()).find("column 13"), std::string::npos) << e.what();
+  }
+  // A coupled indefinite matrix: [[1, 2], [2, 1]] fails at the second pivot.
+  Eigen::MatrixXd c(2, 2);
+  c << 1, 2, 2, 1;
+  EXPECT_THROW(chol.compute(lower_from_dense(c)), meshik::NotPositiveDefinite);
+  // No solve after a failed factorization.
+  std::vector<double> b(2, 1.0);
+  EXPECT_THROW(chol.solve(b.data(), 1), std::logic_error);
+}
+
+TEST(SparseCholesky, IndefiniteLaplacianIsRejected) {
+  // Graph Laplacian shifted below zero: its smallest eigenvalue is -0.05.
+  const CscMatrix a = grid_laplacian(6, 5, -0.05);
+  SparseCholesky chol;
+  EXPECT_THROW(chol.compute(a), meshik::NotPositiveDefinite);
+}
+
+TEST(SparseCholesky, InvalidInputIsNamed) {
+  SparseCholesky chol;
+  CscMatrix a = lower_from_dense(random_spd(5, 0.5, 3));
+  CscMatrix not_square = a;
+  not_square.rows = 6;
+  EXPECT_THROW(chol.analyze(not_square), std::invalid_argument);
+  CscMatrix out_of_range = a;
+  out_of_range.row_index.back() = 9;
+  try {
+    chol.analyze(out_of_range);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("column 4"), std::string::npos) << e.what();
+  }
+  CscMatrix no_diagonal;
+  no_diagonal.rows = no_diagonal.cols = 2;
+  no_diagonal.col_start = {0, 1, 2};
+  no_diagonal.row_index = {1, 1};
+  no_diagonal.values = {1.0, 1.0};
+  try {
+    chol.analyze(no_diagonal);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("column 0 has no diagonal"), std::string::npos) << e.what();
+  }
+  CscMatrix unsorted = lower_from_dense(random_spd(4, 1.0, 9));
+  std::swap(unsorted.row_index[1], unsorted.row_index[2]);
+  EXPECT_THROW(chol.analyze(unsorted), std::invalid_argument);
+}
+
+TEST(SparseCholesky, FactorizeRejectsAnotherPattern) {
+  SparseCholesky chol;
+  chol.analyze(grid_laplacian(5, 5, 1.0));
+  EXPECT_THROW(chol.factorize(grid_laplacian(5, 6, 1.0)), std::invalid_argument);
+  EXPECT_THROW(chol.factorize(lower_from_dense(random_spd(25, 0.3, 1))), std::invalid_argument);
+}
