@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "decimate_module.h"
 #include "meshik/meshik.h"
 
 namespace nb = nanobind;
@@ -251,6 +252,7 @@ NB_MODULE(_core, m) {
   m.doc() = "MeshIK core: pose a mesh from handles within the space of example poses.";
   nb::exception<meshik::InputError>(m, "InputError", PyExc_ValueError);
   nb::exception<meshik::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
+  bind_decimate(m);
 
   nb::class_<PyExampleSet>(m, "ExampleSet",
                            "A rest mesh and example poses (same vertices and faces), validated, "

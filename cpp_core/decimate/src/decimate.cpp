@@ -1,0 +1,277 @@
+// Deformation-aware decimation of an example set with OpenMesh's decimater (see decimate.h).
+#include "meshik/decimate.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+namespace meshik {
+namespace {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  typedef OpenMesh::Vec3d Point;
+  typedef OpenMesh::Vec3d Normal;
+};
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+using Vec = OpenMesh::Vec3d;
+
+// Symmetric 4 by 4 error quadric of Garland and Heckbert: the sum of w (n.x + d)^2 over planes.
+// Stored as its 10 distinct entries.
+struct Quadric {
+  std::array<double, 10> q{};
+
+  // Adds the plane n.x + d = 0 (n of unit length) with weight w.
+  void add_plane(const Vec& n, double d, double w) {
+    const double a = n[0], b = n[1], c = n[2];
+    const double terms[10] = {a * a, a * b, a * c, a * d, b * b, b * c, b * d, c * c, c * d, d * d};
+    for (int i = 0; i < 10; ++i) q[i] += w * terms[i];
+  }
+  Quadric& operator+=(const Quadric& other) {
+    for (int i = 0; i < 10; ++i) q[i] += other.q[i];
+    return *this;
+  }
+  // The error x^T Q x at the point p (homogeneous coordinate 1).
+  double error(const Vec& p) const {
+    const double x = p[0], y = p[1], z = p[2];
+    return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
+           2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
+  }
+};
+
+// Vertex positions of every pose (rest first): #P pointers to #V by 3 row-major arrays.
+struct Poses {
+  std::vector<const double*> positions;
+  int num_vertices = 0;
+
+  Vec at(int pose, int vertex) const {
+    const double* p = positions[pose] + 3 * static_cast<size_t>(vertex);
+    return Vec(p[0], p[1], p[2]);
+  }
+  int count() const { return static_cast<int>(positions.size()); }
+};
+
+// Decimater module: priority = quadric error summed over all poses at the kept vertex;
+// illegal when a remaining triangle would flip (beyond a limit) or degenerate in any pose.
+// Vertex handles keep their original index during decimation (no garbage collection), so
+// vh.idx() is the original vertex id throughout.
+class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
+ public:
+  typedef OpenMesh::Decimater::ModHandleT<ModPoseQuadric> Handle;
+  typedef OpenMesh::Decimater::ModBaseT<Mesh> Base;
+  DECIMATER_MODNAME(PoseQuadric)
+
+  // DecimaterT::add constructs modules from the mesh alone: configure() sets the rest.
+  explicit ModPoseQuadric(Mesh& mesh) : Base(mesh, false) {}
+
+  // poses: every pose's positions (kept alive by the caller); the normal-change limit in degrees.
+  void configure(const Poses* poses, double max_normal_change_degrees) {
+    poses_ = poses;
+    min_cos_ = std::cos(max_normal_change_degrees * M_PI / 180.0);
+  }
+
+  // Quadrics of every vertex in every pose: area-weighted face planes, plus planes through
+  // boundary edges perpendicular to their face, so that open borders keep their shape.
+  void initialize() override {
+    Mesh& m = mesh();
+    const int n = poses_->num_vertices;
+    quadrics_.assign(static_cast<size_t>(poses_->count()) * n, Quadric());
+    for (int p = 0; p < poses_->count(); ++p) {
+      for (auto fh : m.faces()) {
+        std::array<int, 3> v;
+        int i = 0;
+        for (auto vh : m.fv_range(fh)) v[i++] = vh.idx();
+        const Vec a = poses_->at(p, v[0]), b = poses_->at(p, v[1]), c = poses_->at(p, v[2]);
+        Vec normal = OpenMesh::cross(b - a, c - a);
+        const double twice_area = normal.norm();
+        if (twice_area <= 0.0) continue;
+        normal /= twice_area;
+        for (int k = 0; k < 3; ++k) quadric(p, v[k]).add_plane(normal, -OpenMesh::dot(normal, a), 0.5 * twice_area);
+      }
+      for (auto heh : m.halfedges()) {
+        if (!m.is_boundary(heh)) continue;
+        const int from = m.from_vertex_handle(heh).idx(), to = m.to_vertex_handle(heh).idx();
+        const auto face = m.face_handle(m.opposite_halfedge_handle(heh));
+        std::array<int, 3> v;
+        int i = 0;
+        for (auto vh : m.fv_range(face)) v[i++] = vh.idx();
+        const Vec a = poses_->at(p, v[0]), b = poses_->at(p, v[1]), c = poses_->at(p, v[2]);
+        const Vec face_normal = OpenMesh::cross(b - a, c - a);
+        const Vec edge = poses_->at(p, to) - poses_->at(p, from);
+        Vec side = OpenMesh::cross(edge, face_normal);
+        const double length = side.norm();
+        if (length <= 0.0) continue;
+        side /= length;
+        const double weight = kBoundaryWeight * edge.sqrnorm();
+        const double d = -OpenMesh::dot(side, poses_->at(p, from));
+        quadric(p, from).add_plane(side, d, weight);
+        quadric(p, to).add_plane(side, d, weight);
+      }
+    }
+    parent_.resize(n);
+    for (int v = 0; v < n; ++v) parent_[v] = v;
+  }
+
+  float collapse_priority(const CollapseInfo& ci) override {
+    const int v0 = ci.v0.idx(), v1 = ci.v1.idx();
+    double error = 0.0;
+    for (int p = 0; p < poses_->count(); ++p) {
+      Quadric q = quadric(p, v0);
+      q += quadric(p, v1);
+      error += q.error(poses_->at(p, v1));
+    }
+    if (!keeps_triangles_sound(ci)) return float(Base::ILLEGAL_COLLAPSE);
+    return float(std::max(error, 0.0));
+  }
+
+  void postprocess_collapse(const CollapseInfo& ci) override {
+    const int v0 = ci.v0.idx(), v1 = ci.v1.idx();
+    for (int p = 0; p < poses_->count(); ++p) quadric(p, v1) += quadric(p, v0);
+    parent_[v0] = v1;
+  }
+
+  // For each original vertex, the vertex it was last collapsed onto (itself if never).
+  const std::vector<int>& parents() const { return parent_; }
+
+ private:
+  static constexpr double kBoundaryWeight = 10.0;
+
+  Quadric& quadric(int pose, int vertex) { return quadrics_[static_cast<size_t>(pose) * poses_->num_vertices + vertex]; }
+
+  // Whether moving v0 onto v1 leaves every remaining triangle around v0 non-degenerate and
+  // within the normal-change limit, in every pose.
+  bool keeps_triangles_sound(const CollapseInfo& ci) {
+    Mesh& m = mesh();
+    for (auto fh : m.vf_range(ci.v0)) {
+      if (fh == ci.fl || fh == ci.fr) continue;  // removed by the collapse
+      std::array<int, 3> v;
+      int i = 0, moved = 0;
+      for (auto vh : m.fv_range(fh)) {
+        if (vh == ci.v0) moved = i;
+        v[i++] = vh.idx();
+      }
+      for (int p = 0; p < poses_->count(); ++p) {
+        std::array<Vec, 3> corner = {poses_->at(p, v[0]), poses_->at(p, v[1]), poses_->at(p, v[2])};
+        const Vec before = OpenMesh::cross(corner[1] - corner[0], corner[2] - corner[0]);
+        corner[moved] = poses_->at(p, ci.v1.idx());
+        const Vec after = OpenMesh::cross(corner[1] - corner[0], corner[2] - corner[0]);
+        const double before_norm = before.norm(), after_norm = after.norm();
+        if (after_norm <= 1e-12 * std::max(before_norm, 1e-300)) return false;
+        if (OpenMesh::dot(before, after) < min_cos_ * before_norm * after_norm) return false;
+      }
+    }
+    return true;
+  }
+
+  const Poses* poses_ = nullptr;
+  double min_cos_ = 0.5;
+  std::vector<Quadric> quadrics_;
+  std::vector<int> parent_;
+};
+
+// InputError unless every triangle has three distinct in-range vertices and no directed edge is
+// used twice (which would mean inconsistent orientation or an edge shared by more than two
+// triangles); OpenMesh asserts on such input instead of refusing it.
+void check_triangles(const MeshView& rest) {
+  std::unordered_map<long long, int> directed_edges;
+  const auto describe = [](int f) { return "triangle " + std::to_string(f); };
+  for (int f = 0; f < rest.num_triangles; ++f) {
+    const int* t = rest.triangles + 3 * static_cast<size_t>(f);
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] < 0 || t[k] >= rest.num_vertices)
+        throw InputError(describe(f) + " has vertex " + std::to_string(t[k]) + ", out of range (the mesh has " +
+                         std::to_string(rest.num_vertices) + " vertices)");
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      throw InputError(describe(f) + " repeats a vertex (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
+                       std::to_string(t[2]) + ")");
+    for (int k = 0; k < 3; ++k) {
+      const long long key = static_cast<long long>(t[k]) * rest.num_vertices + t[(k + 1) % 3];
+      const auto inserted = directed_edges.emplace(key, f);
+      if (!inserted.second)
+        throw InputError(describe(f) + " and " + describe(inserted.first->second) + " both run along the edge from vertex " +
+                         std::to_string(t[k]) + " to " + std::to_string(t[(k + 1) % 3]) +
+                         ": the mesh is not consistently oriented or not manifold there");
+    }
+  }
+}
+
+// OpenMesh mesh of the rest pose (after check_triangles); throws InputError for a triangle that
+// cannot join a manifold mesh (a non-manifold vertex).
+Mesh build_mesh(const MeshView& rest) {
+  check_triangles(rest);
+  Mesh mesh;
+  std::vector<Mesh::VertexHandle> handles(rest.num_vertices);
+  for (int v = 0; v < rest.num_vertices; ++v) {
+    const double* p = rest.vertices + 3 * static_cast<size_t>(v);
+    handles[v] = mesh.add_vertex(Mesh::Point(p[0], p[1], p[2]));
+  }
+  omerr().disable();  // add_face reports complex vertices on stderr: we throw instead
+  for (int f = 0; f < rest.num_triangles; ++f) {
+    const int* t = rest.triangles + 3 * static_cast<size_t>(f);
+    if (!mesh.add_face(handles[t[0]], handles[t[1]], handles[t[2]]).is_valid()) {
+      omerr().enable();
+      throw InputError("triangle " + std::to_string(f) +
+                       " makes the mesh non-manifold (a complex vertex); the OpenMesh simplifier needs a manifold mesh");
+    }
+  }
+  omerr().enable();
+  return mesh;
+}
+
+}  // namespace
+
+DecimationResult decimate_example_set(const MeshView& rest, const std::vector<const double*>& examples,
+                                      const std::vector<int>& locked, int target_triangles,
+                                      double max_normal_change_degrees) {
+  if (target_triangles < 1) throw InputError("the target triangle count must be at least 1");
+  Mesh mesh = build_mesh(rest);
+  mesh.request_vertex_status();
+  mesh.request_edge_status();
+  mesh.request_face_status();
+  for (int v : locked) {
+    if (v < 0 || v >= rest.num_vertices)
+      throw InputError("locked vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                       std::to_string(rest.num_vertices) + " vertices)");
+    mesh.status(mesh.vertex_handle(v)).set_locked(true);
+  }
+  Poses poses;
+  poses.num_vertices = rest.num_vertices;
+  poses.positions.push_back(rest.vertices);
+  poses.positions.insert(poses.positions.end(), examples.begin(), examples.end());
+
+  OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
+  ModPoseQuadric::Handle module;
+  decimater.add(module);
+  decimater.module(module).configure(&poses, max_normal_change_degrees);
+  decimater.initialize();
+  decimater.decimate_to_faces(0, static_cast<size_t>(target_triangles));
+
+  DecimationResult result;
+  std::vector<int> new_index(rest.num_vertices, -1);
+  for (int v = 0; v < rest.num_vertices; ++v) {
+    if (!mesh.status(mesh.vertex_handle(v)).deleted()) {
+      new_index[v] = static_cast<int>(result.kept_vertices.size());
+      result.kept_vertices.push_back(v);
+    }
+  }
+  for (auto fh : mesh.faces()) {
+    if (mesh.status(fh).deleted()) continue;
+    for (auto vh : mesh.fv_range(fh)) result.triangles.push_back(new_index[vh.idx()]);
+  }
+  const std::vector<int>& parents = decimater.module(module).parents();
+  result.vertex_map.resize(rest.num_vertices);
+  for (int v = 0; v < rest.num_vertices; ++v) {
+    int root = v;
+    while (parents[root] != root) root = parents[root];
+    result.vertex_map[v] = new_index[root];
+  }
+  return result;
+}
+
+}  // namespace meshik

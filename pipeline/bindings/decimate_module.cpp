@@ -1,0 +1,72 @@
+// meshik._core.decimate: the OpenMesh decimator (cpp_core/decimate) for Python, numpy in and out.
+// Registered by bind_decimate() (decimate_module.h), which the module definition (core_module.cpp) calls.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/vector.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "decimate_module.h"
+#include "meshik/decimate.h"
+
+namespace nb = nanobind;
+
+namespace {
+
+using Positions = nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
+using Triangles = nb::ndarray<const int, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
+using Indices = nb::ndarray<const int, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IntArray = nb::ndarray<nb::numpy, int>;
+
+// A numpy int32 array owning `values`, with the given shape (rows, or rows by columns).
+IntArray to_numpy(std::vector<int>&& values, size_t rows, size_t columns) {
+  auto* owned = new std::vector<int>(std::move(values));
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<int>*>(p); });
+  if (columns == 0) return IntArray(owned->data(), {rows}, owner);
+  return IntArray(owned->data(), {rows, columns}, owner);
+}
+
+// decimate(rest, triangles, examples, locked, target_triangles, max_normal_change_degrees)
+//   -> (kept_vertices #S, triangles #SF by 3, vertex_map #V); see meshik/decimate.h.
+nb::tuple decimate(Positions rest, Triangles triangles, const std::vector<Positions>& examples, Indices locked,
+                   int target_triangles, double max_normal_change_degrees) {
+  const int num_vertices = static_cast<int>(rest.shape(0));
+  std::vector<const double*> example_pointers;
+  for (size_t i = 0; i < examples.size(); ++i) {
+    if (static_cast<int>(examples[i].shape(0)) != num_vertices)
+      throw meshik::InputError("example " + std::to_string(i) + " has " + std::to_string(examples[i].shape(0)) +
+                               " vertices but the rest mesh has " + std::to_string(num_vertices));
+    example_pointers.push_back(examples[i].data());
+  }
+  meshik::MeshView view;
+  view.vertices = rest.data();
+  view.num_vertices = num_vertices;
+  view.triangles = triangles.data();
+  view.num_triangles = static_cast<int>(triangles.shape(0));
+  std::vector<int> locked_vertices(locked.data(), locked.data() + locked.shape(0));
+  meshik::DecimationResult result;
+  {
+    nb::gil_scoped_release unlocked;
+    result = meshik::decimate_example_set(view, example_pointers, locked_vertices, target_triangles,
+                                          max_normal_change_degrees);
+  }
+  const size_t kept = result.kept_vertices.size(), faces = result.triangles.size() / 3;
+  return nb::make_tuple(to_numpy(std::move(result.kept_vertices), kept, 0),
+                        to_numpy(std::move(result.triangles), faces, 3),
+                        to_numpy(std::move(result.vertex_map), static_cast<size_t>(num_vertices), 0));
+}
+
+}  // namespace
+
+void bind_decimate(nb::module_& m) {
+  m.def("decimate", &decimate, nb::arg("rest"), nb::arg("triangles"), nb::arg("examples"), nb::arg("locked"),
+        nb::arg("target_triangles"), nb::arg("max_normal_change_degrees") = 60.0,
+        "Deformation-aware decimation of an example set (OpenMesh decimater).\n\n"
+        "rest: #V by 3 float64; triangles: #F by 3 int32; examples: list of #V by 3 float64;\n"
+        "locked: vertex ids never removed (the handles); target_triangles: stop at this many.\n"
+        "The error of a collapse is the quadric error summed over the rest pose and every example;\n"
+        "collapses that flip a triangle by more than max_normal_change_degrees in any pose are refused.\n"
+        "Returns (kept_vertices #S, triangles #SF by 3 indexing kept_vertices, vertex_map #V).");
+}

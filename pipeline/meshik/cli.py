@@ -1,0 +1,177 @@
+"""The `meshik` command: pose, batch, blend, info. Exit status 0 on success, 1 when any job or
+file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import List, Optional
+
+
+_FORMAT_HELP = ("comma-separated output formats: drc (Draco per frame, edgebreaker, original vertex ids kept), "
+                "glb (one glTF with a Draco base mesh, one morph target per frame and an animation), and any mesh "
+                "format pymeshlab writes, e.g. ply, obj, off, stl (one file per frame). Default: drc,glb")
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    """Run the command line `argv` (default sys.argv[1:]); returns the exit status."""
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_request:  # --help (0) or a usage error (2)
+        return int(exit_request.code or 0)
+    try:
+        return args.run(args)
+    except ValueError as error:  # PipelineError and the core's InputError: bad input, the message says why
+        print(f"meshik: error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("meshik: interrupted", file=sys.stderr)
+        return 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    """The argument parser with its four sub-commands."""
+    parser = argparse.ArgumentParser(
+        prog="meshik", description="Mesh-based inverse kinematics: pose a mesh from handle targets within the space "
+                                   "of its example poses, and write the animation as compressed assets.")
+    commands = parser.add_subparsers(title="commands", metavar="COMMAND", required=True)
+
+    pose = commands.add_parser("pose", help="pose every frame of one constraint file",
+                               description="Pose every frame of a constraint file and write the outputs and "
+                                           "report.json into DIR. Skips the job when DIR already holds its complete outputs.")
+    pose.add_argument("constraints", metavar="CONSTRAINTS", help="constraint file (JSON, format meshik-constraints version 1)")
+    _job_options(pose)
+    pose.set_defaults(run=_run_pose)
+
+    batch = commands.add_parser("batch", help="pose many constraint files in parallel",
+                                description="Pose every constraint file in its own worker process, each into "
+                                            "DIR/<name of the file>/. A failing job does not stop the others; "
+                                            "complete jobs are skipped on a re-run. DIR/batch-report.json lists every job.")
+    batch.add_argument("constraints", metavar="CONSTRAINTS", nargs="+", help="constraint files")
+    batch.add_argument("--jobs", "-j", type=_positive_int, default=1, metavar="N", help="worker processes at a time (default 1)")
+    _job_options(batch)
+    batch.set_defaults(run=_run_batch)
+
+    blend = commands.add_parser("blend", help="blend the example poses with given weights (no handles)",
+                                description="Combine the examples with the given weights in the chosen feature space "
+                                            "and write the mesh.")
+    blend.add_argument("inputs", metavar="INPUT", nargs="+",
+                       help="a constraint file (uses its rest mesh and examples), or the rest mesh followed by the examples")
+    blend.add_argument("--weights", "-w", required=True, type=_float_list, metavar="W1,W2,...",
+                       help="one weight per example, comma-separated (0 = rest pose, 1 = that example)")
+    blend.add_argument("--out", "-o", required=True, type=Path, metavar="FILE",
+                       help="output mesh: .drc or any format pymeshlab writes (.ply, .obj, ...)")
+    blend.add_argument("--feature-space", choices=("nonlinear", "linear"), default=None,
+                       help="nonlinear (rotations blended in log space; default) or linear (deformation gradients blended linearly)")
+    blend.set_defaults(run=_run_blend)
+
+    info = commands.add_parser("info", help="describe meshes, .drc, .glb and constraint files",
+                               description="Print counts, bounds and edges of each file; meshes are compared with the "
+                                           "first one's triangle list; constraint files are validated.")
+    info.add_argument("files", metavar="FILE", nargs="+", help="meshes, .drc, .glb or constraint (.json) files")
+    info.add_argument("--json", action="store_true", help="print the summaries as JSON")
+    info.set_defaults(run=_run_info)
+    return parser
+
+
+def _job_options(parser: argparse.ArgumentParser) -> None:
+    """Options shared by `pose` and `batch`."""
+    parser.add_argument("--out", "-o", required=True, type=Path, metavar="DIR", help="output folder")
+    parser.add_argument("--simplify", type=_simplify_target, metavar="N",
+                        help="simplify before posing: N triangles (an integer) or the fraction of triangles to keep (e.g. 0.25)")
+    parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
+                        help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
+                             "with handles locked and the error summed over all poses (default fast)")
+    parser.add_argument("--format", dest="formats", default="drc,glb", metavar="LIST", help=_FORMAT_HELP)
+    parser.add_argument("--feature-space", choices=("nonlinear", "linear"), default=None,
+                        help="override the constraint file's feature space (default: the file's, else nonlinear)")
+    parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
+                        help="Draco position quantisation bits, one grid for the whole animation (default 14)")
+    parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
+    parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
+
+
+def _run_pose(args) -> int:
+    """`meshik pose`: one job; 0 on success."""
+    from meshik.pipeline import pose_job
+
+    report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
+                      feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
+                      force=args.force)
+    if report.get("skipped") and not args.quiet:
+        print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
+    return 0
+
+
+def _run_batch(args) -> int:
+    """`meshik batch`: every job in parallel; 1 when any failed."""
+    from meshik.batch import run_batch
+    from meshik.pipeline import parse_formats
+
+    outcomes = run_batch(args.constraints, args.out, jobs=args.jobs, quiet=args.quiet, simplify=args.simplify,
+                         simplifier=args.simplifier, formats=parse_formats(args.formats), feature_space=args.feature_space,
+                         quantization_bits=args.quantization_bits, force=args.force)
+    failed = [o for o in outcomes if o.status == "failed"]
+    if failed:
+        print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+def _run_blend(args) -> int:
+    """`meshik blend`: write the blended mesh; 0 on success."""
+    from meshik.blending import blend_to_file
+
+    blend_to_file(args.inputs, args.weights, args.out, feature_space=args.feature_space)
+    return 0
+
+
+def _run_info(args) -> int:
+    """`meshik info`: one summary per file (text or JSON); 1 when any file could not be read."""
+    from meshik.file_info import describe_files
+
+    summaries, errors = describe_files(args.files)
+    if args.json:
+        print(json.dumps(summaries, indent=1))
+    else:
+        for summary in summaries:
+            print(summary["file"])
+            for key, value in summary.items():
+                if key != "file":
+                    print(f"  {key}: {value}")
+    for error in errors:
+        print(f"meshik: error: {error}", file=sys.stderr)
+    return 1 if errors else 0
+
+
+def _positive_int(text: str) -> int:
+    """argparse type: an integer >= 1."""
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text}")
+    return value
+
+
+def _simplify_target(text: str):
+    """argparse type for --simplify: an integer triangle count, or a fraction in (0, 1)."""
+    try:
+        return int(text)
+    except ValueError:
+        pass
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a triangle count or a fraction, got {text!r}") from None
+    if not 0.0 < value < 1.0:
+        raise argparse.ArgumentTypeError(f"a fraction must be between 0 and 1, got {text}")
+    return value
+
+
+def _float_list(text: str) -> List[float]:
+    """argparse type: comma-separated finite numbers."""
+    try:
+        values = [float(part) for part in text.split(",") if part.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from None
+    if not values or any(v != v or v in (float("inf"), float("-inf")) for v in values):
+        raise argparse.ArgumentTypeError(f"expected finite comma-separated numbers, got {text!r}")
+    return values

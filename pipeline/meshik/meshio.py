@@ -1,0 +1,149 @@
+"""Mesh files through pymeshlab: load one mesh or a whole example set, save a posed mesh.
+
+pymeshlab reads and writes every format MeshLab knows (OBJ, PLY, OFF, STL, ...). Only numpy
+arrays leave this module. pymeshlab is imported on first use, so `import meshik` stays light.
+"""
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import List, Sequence, Tuple
+
+import numpy as np
+
+from meshik.errors import MeshFileError, OutputError
+
+# Attributes MeshLab would add to a saved file that a posed mesh does not have; each one is
+# dropped from the request when the format has no such parameter.
+_PLAIN_SAVE_OPTIONS = {"save_vertex_color": False, "save_vertex_quality": False, "save_vertex_normal": False,
+                       "save_face_color": False, "save_face_quality": False, "save_wedge_texcoord": False,
+                       "save_wedge_normal": False}
+_UNKNOWN_PARAMETER = re.compile(r"Parameter (\w+) not found")
+
+
+@dataclass(frozen=True)
+class ExampleMeshes:
+    """A rest mesh and its example poses, all with the rest mesh's triangle list.
+
+    rest:     #V by 3 rest positions
+    faces:    #F by 3 vertex indices (int64), shared by every pose
+    examples: #E arrays, each #V by 3
+    """
+    rest: np.ndarray
+    faces: np.ndarray
+    examples: Tuple[np.ndarray, ...]
+    rest_path: Path
+    example_paths: Tuple[Path, ...]
+
+
+def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
+    """(#V by 3 float64 positions, #F by 3 int64 triangles) of a mesh file. Raises MeshFileError.
+
+    MeshLab's readers drop vertices with non-finite coordinates (and their triangles) while loading.
+    """
+    import pymeshlab
+
+    path = Path(path)
+    if not path.is_file():
+        raise MeshFileError(f"{path}: mesh file not found")
+    meshes = pymeshlab.MeshSet()
+    try:
+        meshes.load_new_mesh(str(path))
+    except pymeshlab.PyMeshLabException as error:
+        detail = " ".join(str(error).split())
+        raise MeshFileError(f"{path}: cannot read the mesh: {detail}") from None
+    mesh = meshes.current_mesh()
+    vertices = np.array(mesh.vertex_matrix(), dtype=np.float64)
+    faces = np.array(mesh.face_matrix(), dtype=np.int64).reshape(-1, 3)
+    if len(faces) == 0:
+        raise MeshFileError(f"{path}: the mesh has no triangles")
+    return vertices, faces
+
+
+def load_example_set(rest_path, example_paths: Sequence) -> ExampleMeshes:
+    """Load the rest mesh and every example; all must share the rest mesh's vertex count and triangles.
+
+    Raises MeshFileError naming the first file (and triangle) that differs.
+    """
+    rest_path = Path(rest_path)
+    rest, faces = load_mesh(rest_path)
+    examples: List[np.ndarray] = []
+    for path in map(Path, example_paths):
+        vertices, example_faces = load_mesh(path)
+        _check_same_topology(path, vertices, example_faces, rest_path, rest, faces)
+        examples.append(vertices)
+    return ExampleMeshes(rest=rest, faces=faces, examples=tuple(examples), rest_path=rest_path,
+                         example_paths=tuple(map(Path, example_paths)))
+
+
+def _check_same_topology(path: Path, vertices: np.ndarray, faces: np.ndarray,
+                         rest_path: Path, rest: np.ndarray, rest_faces: np.ndarray) -> None:
+    """MeshFileError unless an example has the rest mesh's vertex count and identical triangle list."""
+    if len(vertices) != len(rest):
+        hint = " (MeshLab drops vertices with NaN or infinite coordinates when loading)" if len(vertices) < len(rest) else ""
+        raise MeshFileError(f"{path}: has {len(vertices)} vertices but the rest mesh {rest_path} has {len(rest)}{hint}; "
+                            "every example must have the rest mesh's vertices and triangles")
+    if len(faces) != len(rest_faces):
+        raise MeshFileError(f"{path}: has {len(faces)} triangles but the rest mesh {rest_path} has {len(rest_faces)}; "
+                            "every example must have the rest mesh's triangle list")
+    differs = np.flatnonzero((faces != rest_faces).any(axis=1))
+    if len(differs):
+        first = differs[0]
+        raise MeshFileError(f"{path}: triangle {first} is {faces[first].tolist()} but in the rest mesh {rest_path} "
+                            f"it is {rest_faces[first].tolist()}; every example must have the rest mesh's triangle list")
+
+
+def save_mesh(path, vertices: np.ndarray, faces: np.ndarray) -> None:
+    """Write a mesh (#V by 3 positions, #F by 3 triangles) in the format of `path`'s extension.
+
+    Only positions and triangles are written (no colours, normals or quality). Raises OutputError
+    for a format pymeshlab cannot write.
+    """
+    import pymeshlab
+
+    meshes = pymeshlab.MeshSet()
+    meshes.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(vertices, dtype=np.float64),
+                                   face_matrix=np.asarray(faces, dtype=np.int32)))
+    options = dict(_PLAIN_SAVE_OPTIONS)
+    while True:
+        try:
+            meshes.save_current_mesh(str(path), **options)
+            return
+        except pymeshlab.PyMeshLabException as error:
+            unknown = _UNKNOWN_PARAMETER.search(str(error))
+            if unknown is None or unknown.group(1) not in options:
+                raise OutputError(f"{path}: cannot write the mesh: {' '.join(str(error).split())}") from None
+            del options[unknown.group(1)]
+
+
+def surface_distance(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np.ndarray, faces_b: np.ndarray,
+                     samples: int = 100000) -> float:
+    """Symmetric Hausdorff distance between two triangle meshes (#V by 3 positions, #F by 3 each).
+
+    MeshLab's sampler: every vertex plus points on edges and faces (about `samples` per mesh),
+    each measured to the nearest point of the other surface; returns the largest distance.
+    """
+    import pymeshlab
+
+    meshes = pymeshlab.MeshSet()
+    for vertices, faces in ((vertices_a, faces_a), (vertices_b, faces_b)):
+        meshes.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(vertices, dtype=np.float64),
+                                       face_matrix=np.asarray(faces, dtype=np.int32)))
+    worst = 0.0
+    for sampled, target in ((0, 1), (1, 0)):
+        result = meshes.get_hausdorff_distance(sampledmesh=sampled, targetmesh=target, samplevert=True, sampleedge=True,
+                                               sampleface=True, samplenum=samples, maxdist=pymeshlab.PercentageValue(100))
+        worst = max(worst, result["max"])
+    return worst
+
+
+def saveable_format(extension: str) -> bool:
+    """Whether pymeshlab can write meshes with this file extension (without the dot, e.g. "ply")."""
+    import pymeshlab
+
+    probe = pymeshlab.MeshSet()
+    probe.add_mesh(pymeshlab.Mesh(vertex_matrix=np.eye(3), face_matrix=np.array([[0, 1, 2]], dtype=np.int32)))
+    try:
+        probe.save_current_mesh(f"/nonexistent-folder/probe.{extension}")
+    except pymeshlab.PyMeshLabException as error:
+        return "Unknown format" not in str(error)
+    return True

@@ -1,0 +1,244 @@
+"""One job: constraint file -> example set -> (simplify) -> pose every frame -> compressed outputs.
+
+    report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
+
+Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
+"original_id" attribute), <job>.glb (Draco base mesh + one morph target per frame + animation),
+frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
+output vertex, when simplified), and report.json (written last). Nothing is created when the
+input is bad; an interrupted job leaves no file under its final name; a job whose outputs are
+complete for the same inputs and options is skipped.
+"""
+import hashlib
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any, Dict, Optional, Sequence, TextIO, Tuple, Union
+
+import numpy as np
+
+from meshik import constraints as constraint_files
+from meshik.errors import PipelineError
+from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
+from meshik.export_gltf import animation_glb
+from meshik.meshio import load_example_set, save_mesh, saveable_format
+from meshik.posing import PosedAnimation, pose_animation
+from meshik.progress import Progress
+from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
+from meshik.staging import StagedOutput, check_writable, is_complete, read_report
+
+REPORT_VERSION = 1
+DEFAULT_FORMATS = ("drc", "glb")
+GENERATOR = "MeshIK pipeline"
+
+
+def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = None, simplifier: str = "fast",
+             formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
+             quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
+             stream: Optional[TextIO] = None) -> Dict[str, Any]:
+    """Run one job and return its report (also written as out_dir/report.json).
+
+    simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
+              or None for full resolution; simplifier: "fast" or "openmesh";
+    formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
+    feature_space: overrides the constraint file's ("nonlinear" or "linear");
+    force: run even when out_dir already holds the complete outputs of the same job.
+    The returned report has "skipped": True when the job was already complete.
+    Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
+    """
+    clock = _Clock()
+    constraints_path, out_dir = Path(constraints_path), Path(out_dir)
+    constraint_set = constraint_files.load(constraints_path)
+    formats = parse_formats(formats)
+    _check_choice("simplifier", simplifier, SIMPLIFIERS)
+    _check_choice("feature space", feature_space, constraint_files.FEATURE_SPACES + (None,))
+    if not 1 <= quantization_bits <= 30:
+        raise PipelineError(f"quantization bits must be between 1 and 30, got {quantization_bits}")
+    check_writable(out_dir)
+    solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
+    if feature_space:
+        solver_options["feature_space"] = feature_space
+    key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits)
+    if not force and is_complete(out_dir, key):
+        return dict(read_report(out_dir), skipped=True)
+
+    name = constraints_path.stem
+    say = _Announcer(name, quiet, stream)
+    meshes = load_example_set(constraint_set.rest, constraint_set.examples)
+    resolved = constraint_files.resolve(constraint_set, meshes.rest)
+    clock.lap("load")
+    say(f"{len(meshes.rest)} vertices, {len(meshes.faces)} triangles, {len(meshes.examples)} examples, "
+        f"{len(resolved.handles)} handle vertices, {len(resolved.frame_names)} frames")
+
+    simplified = None
+    if simplify is not None:
+        target = _target_triangles(simplify, len(meshes.faces))
+        simplified = simplify_meshes(meshes, target, resolved.handles, simplifier)
+        say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
+    clock.lap("simplify")
+    posed_meshes = simplified.meshes if simplified is not None else meshes
+    handles, kept = remap_handles(simplified, resolved.handles)
+
+    progress = Progress(f"{name}: posing", len(resolved.frame_names), quiet=quiet, stream=stream)
+    posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options,
+                           on_frame=progress.advance, context=str(constraint_set.rest))
+    progress.finish(f"{posed.solve_seconds.sum():.2f} s")
+    clock.lap("pose")
+
+    vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
+    grid = animation_grid(np.concatenate([posed.vertices, posed_meshes.rest[None]]), quantization_bits)
+    writing = Progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
+    with StagedOutput(out_dir) as staged:
+        _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
+                simplified is not None, grid, constraint_set.fps, formats, writing)
+        clock.lap("export")
+        fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
+        report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
+                         posed, fit, grid, clock.laps)
+        report = staged.commit(report)
+    say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
+        f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
+    return dict(report, skipped=False)
+
+
+def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
+    """Output formats as a tuple of lower-case names ("drc", "glb", or a pymeshlab extension).
+
+    Accepts "drc,glb,ply" or a sequence. Raises PipelineError for an empty list or a format
+    nothing here can write.
+    """
+    names = formats.split(",") if isinstance(formats, str) else list(formats)
+    parsed = tuple(dict.fromkeys(n.strip().lower().lstrip(".") for n in names if n.strip()))
+    if not parsed:
+        raise PipelineError("no output format given (e.g. drc,glb,ply)")
+    for name in parsed:
+        if name not in DEFAULT_FORMATS and not (name.isalnum() and saveable_format(name)):
+            raise PipelineError(f"unknown output format {name!r}: use drc, glb or a mesh format pymeshlab writes (ply, obj, off, stl, ...)")
+    return parsed
+
+
+def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict[str, Any], simplify, simplifier: str,
+            formats: Tuple[str, ...], quantization_bits: int) -> str:
+    """A hash of everything a job's outputs depend on: the constraint file's bytes, the size and
+    modification time of every mesh file, and the options."""
+    meshes = [constraint_set.rest, *constraint_set.examples]
+    state = {
+        "constraints": hashlib.sha256(constraint_set.source.read_bytes()).hexdigest(),
+        "meshes": [[str(p), p.stat().st_size, p.stat().st_mtime_ns] for p in meshes],
+        "options": [solver_options, simplify, simplifier if simplify is not None else None, list(formats), quantization_bits],
+        "report_version": REPORT_VERSION,
+    }
+    return hashlib.sha256(json.dumps(state, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def _check_choice(what: str, value, choices) -> None:
+    """PipelineError unless value is one of choices."""
+    if value not in choices:
+        listed = ", ".join(str(c) for c in choices if c is not None)
+        raise PipelineError(f"unknown {what} {value!r} (choose from: {listed})")
+
+
+def _target_triangles(simplify: Union[int, float], triangles: int) -> int:
+    """Target triangle count from an int count or a float fraction in (0, 1); PipelineError otherwise."""
+    if isinstance(simplify, bool) or not isinstance(simplify, (int, float)):
+        raise PipelineError(f"--simplify expects a triangle count or a fraction, got {simplify!r}")
+    if isinstance(simplify, float) and not simplify.is_integer():
+        if not 0.0 < simplify < 1.0:
+            raise PipelineError(f"--simplify fraction must be between 0 and 1, got {simplify}")
+        return max(4, int(round(simplify * triangles)))
+    return int(simplify)
+
+
+def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray, posed: PosedAnimation,
+            frame_names: Sequence[str], vertex_ids: np.ndarray, simplified: bool, grid, fps: float,
+            formats: Tuple[str, ...], progress: Progress) -> None:
+    """Write every requested format into the staging folder."""
+    for fmt in formats:
+        if fmt == "drc":
+            for frame, vertices in zip(frame_names, posed.vertices):
+                staged.write(f"frames/{frame}.drc", encode_frame(vertices, faces, vertex_ids, grid))
+                progress.advance()
+        elif fmt == "glb":
+            staged.write(f"{name}.glb", animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, grid, fps,
+                                                      name, GENERATOR))
+            progress.advance()
+        else:
+            for frame, vertices in zip(frame_names, posed.vertices):
+                relative = f"frames/{frame}.{fmt}"
+                save_mesh(staged.path(relative), vertices, faces)
+                staged.added(relative)
+                progress.advance()
+            if simplified and "vertex_ids.txt" not in staged.files:
+                staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
+    progress.finish()
+
+
+def _file_count(formats: Tuple[str, ...], frames: int) -> int:
+    """How many files the formats make: one .glb, one file per frame for every other format."""
+    return sum(1 if fmt == "glb" else frames for fmt in formats)
+
+
+def _handle_fit(posed_vertices: np.ndarray, simplified: Optional[SimplifiedMeshes], handles: np.ndarray,
+                targets: np.ndarray) -> np.ndarray:
+    """#frames by #H distances from each original handle's target to the posed vertex it maps to."""
+    rows = simplified.vertex_map[handles] if simplified is not None else handles
+    return np.linalg.norm(posed_vertices[:, rows] - targets, axis=2)
+
+
+def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved, posed: PosedAnimation,
+            fit: np.ndarray, grid, timings: Dict[str, float]) -> Dict[str, Any]:
+    """The report.json document (without "outputs", which the commit adds)."""
+    frames = [{"name": frame, "weights": posed.weights[k].tolist(), "iterations": int(posed.iterations[k]),
+               "residual": float(posed.residuals[k]), "converged": bool(posed.converged[k]),
+               "solve_seconds": float(posed.solve_seconds[k]),
+               "handle_fit_error": {"max": float(fit[k].max()), "rms": float(np.sqrt(np.mean(fit[k] ** 2)))}}
+              for k, frame in enumerate(resolved.frame_names)]
+    posed_count = len(simplified.meshes.rest) if simplified is not None else len(meshes.rest)
+    return {
+        "report_version": REPORT_VERSION,
+        "job": name,
+        "job_key": key,
+        "constraints": str(constraint_set.source),
+        "input": {"rest": str(meshes.rest_path), "examples": [str(p) for p in meshes.example_paths],
+                  "vertices": len(meshes.rest), "triangles": len(meshes.faces)},
+        "simplification": None if simplified is None else {
+            "simplifier": simplifier, "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
+            "snapped_vertices": simplified.snapped,
+            "merged_handle_vertices": int(len(resolved.handles) - len(np.unique(simplified.vertex_map[resolved.handles])))},
+        "solver": dict(solver_options, handle_vertices=len(resolved.handles), posed_vertices=posed_count),
+        "frame_count": len(frames),
+        "fps": constraint_set.fps,
+        "handle_fit_error": {"max": float(fit.max()), "rms": float(np.sqrt(np.mean(fit ** 2)))},
+        "quantization": {"bits": grid.bits, "origin": list(grid.origin), "range": grid.range, "step": grid.step},
+        "timings": dict(timings, precompute=posed.precompute_seconds, solve_total=float(posed.solve_seconds.sum()),
+                        solve_mean=float(posed.solve_seconds.mean())),
+        "frames": frames,
+    }
+
+
+class _Clock:
+    """Wall-clock laps of a job: lap(name) records the seconds since the previous lap."""
+
+    def __init__(self):
+        self.start = self.last = time.perf_counter()
+        self.laps: Dict[str, float] = {}
+
+    def lap(self, name: str) -> None:
+        """Record the time since the previous lap under `name` (and the running total)."""
+        now = time.perf_counter()
+        self.laps[name] = now - self.last
+        self.laps["total"] = now - self.start
+        self.last = now
+
+
+class _Announcer:
+    """Prints "<job>: message" lines on stderr unless quiet."""
+
+    def __init__(self, name: str, quiet: bool, stream: Optional[TextIO]):
+        self.name, self.quiet, self.stream = name, quiet, stream
+
+    def __call__(self, message: str) -> None:
+        """Print one line for this job (nothing when quiet)."""
+        if not self.quiet:
+            print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)

@@ -1,0 +1,106 @@
+"""pose_job end to end on a small tube: every output decodes to the solver's own result (within the
+Draco quantisation step), the report says what happened, simplified jobs keep their handles."""
+import json
+
+import numpy as np
+import pytest
+import trimesh
+
+import meshik
+from meshik import constraints, export_draco, export_gltf
+from meshik.meshio import load_example_set, load_mesh
+from meshik.pipeline import pose_job
+from meshik.simplify import simplify
+from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
+from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
+
+
+@pytest.fixture(scope="module")
+def shot(tmp_path_factory):
+    """A 160-vertex tube set and a 5-frame constraint file bending its top ring."""
+    folder = tmp_path_factory.mktemp("shot")
+    tube_set = write_tube_set(folder, rings=16, segments=10)
+    path = write_constraints(folder / "bend.json", tube_constraints(tube_set, frames=5))
+    return {"set": tube_set, "path": path, "folder": folder}
+
+
+def solver_reference(path, feature_space="nonlinear"):
+    """The core's own result for every frame (same handles, targets and warm start as the pipeline)."""
+    constraint_set = constraints.load(path)
+    meshes = load_example_set(constraint_set.rest, constraint_set.examples)
+    resolved = constraints.resolve(constraint_set, meshes.rest)
+    solver = meshik.Solver(meshes.rest, meshes.faces, list(meshes.examples), resolved.handles, feature_space=feature_space)
+    frames, weights = [], None
+    for targets in resolved.targets:
+        result = solver.solve(targets, initial_weights=weights)
+        weights = np.asarray(result.weights)
+        frames.append(np.asarray(result.vertices))
+    return np.stack(frames), resolved
+
+
+def test_outputs_decode_to_the_solver_result(shot, tmp_path):
+    """DracoPy and Google's draco_decoder decode every .drc, the glTF Validator and trimesh accept
+    the .glb, and all of them give back the solver's own positions."""
+    out = tmp_path / "out"
+    report = pose_job(shot["path"], out, formats=("drc", "glb", "ply"), quiet=True)
+    expected, resolved = solver_reference(shot["path"])
+    step = report["quantization"]["step"]
+    assert report["frame_count"] == 5 and not report["skipped"]
+    assert step == pytest.approx(report["quantization"]["range"] / (2 ** 14 - 1))
+    for k, name in enumerate(resolved.frame_names):
+        drc = out / "frames" / f"{name}.drc"
+        decoded = export_draco.decode(drc.read_bytes())
+        assert decoded.method == export_draco.EDGEBREAKER
+        assert np.abs(decoded.vertices - expected[k][decoded.vertex_ids]).max() <= step
+        by_google, google_faces = decode_with_draco_decoder(drc, tmp_path)
+        assert np.abs(by_google - expected[k][decoded.vertex_ids]).max() <= step
+        np.testing.assert_array_equal(google_faces, decoded.faces)
+        vertices, faces = load_mesh(out / "frames" / f"{name}.ply")
+        np.testing.assert_allclose(vertices, expected[k], atol=1e-9)
+        np.testing.assert_array_equal(faces, shot["set"]["faces"])
+    validate_and_check_no_errors(out / "bend.glb")
+    (mesh,) = trimesh.load(out / "bend.glb").geometry.values()  # structure only: trimesh has no Draco decoder
+    assert mesh.vertices.shape == expected[0].shape
+    animation = export_gltf.read_animation_glb((out / "bend.glb").read_bytes())
+    assert animation.frame_names == resolved.frame_names
+    np.testing.assert_allclose(animation.frames, expected[:, animation.vertex_ids], atol=1e-5)
+
+
+def test_report_records_fit_weights_timings_and_sizes(shot, tmp_path):
+    out = tmp_path / "out"
+    report = pose_job(shot["path"], out, formats=("drc", "glb"), feature_space="linear", quiet=True)
+    on_disk = json.loads((out / "report.json").read_text())
+    assert on_disk == {k: v for k, v in report.items() if k != "skipped"}
+    assert report["solver"]["feature_space"] == "linear" and report["solver"]["handle_vertices"] == 20
+    assert report["handle_fit_error"]["max"] < 1e-8  # handles are hard constraints
+    first, *others = report["frames"]
+    assert first["weights"] == [0.0, 0.0]  # frame 1 asks for the rest pose: nothing to do
+    for frame in others:
+        assert len(frame["weights"]) == 2 and frame["iterations"] >= 1 and frame["solve_seconds"] > 0
+    # the bend grows frame by frame: so does the weight of the example bent the same way (about y)
+    first_example = [frame["weights"][0] for frame in report["frames"]]
+    assert first_example == sorted(first_example) and first_example[-1] > 0.5
+    assert set(report["timings"]) >= {"load", "simplify", "pose", "export", "total", "precompute", "solve_mean"}
+    for name, size in report["outputs"].items():
+        assert (out / name).stat().st_size == size
+    assert pose_job(shot["path"], out, formats=("drc", "glb"), feature_space="linear", quiet=True)["skipped"]
+    assert not pose_job(shot["path"], out, formats=("drc", "glb"), quiet=True)["skipped"]  # other options
+
+
+@pytest.mark.parametrize("simplifier", ["fast", "openmesh"])
+def test_simplified_job_keeps_handles_and_original_ids(shot, tmp_path, simplifier):
+    out = tmp_path / "out"
+    report = pose_job(shot["path"], out, simplify=120, simplifier=simplifier, formats=("drc", "obj"), quiet=True)
+    meshes = load_example_set(shot["set"]["rest"], shot["set"]["examples"])
+    handles = np.array(shot["set"]["bottom"] + shot["set"]["top"])
+    simplified = simplify(meshes, 120, handles, simplifier)
+    assert report["simplification"]["triangles"] == len(simplified.meshes.faces) <= 120
+    decoded = export_draco.decode((out / "frames" / "0005.drc").read_bytes())
+    assert sorted(decoded.vertex_ids) == sorted(simplified.source_vertex)
+    ids = np.loadtxt(out / "vertex_ids.txt", dtype=int)
+    np.testing.assert_array_equal(ids, simplified.source_vertex)
+    fit = report["handle_fit_error"]["max"]
+    if simplifier == "openmesh":
+        assert fit < 1e-8  # locked handles survive
+    else:  # merged handles are reported, not hidden
+        assert (fit < 1e-8) == (report["simplification"]["merged_handle_vertices"] == 0)
