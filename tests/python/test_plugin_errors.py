@@ -6,18 +6,11 @@ import numpy as np
 import pymeshlab
 import pytest
 
+from pipeline_meshes import grid
 from plugin_helpers import BLEND, POSE, mesh_set, select_vertices
 
-
-def grid(n: int = 5):
-    """A flat n by n vertex grid: (#V by 3 vertices, #F by 3 triangles)."""
-    vertices = np.array([[x, y, 0.0] for y in range(n) for x in range(n)], dtype=float)
-    faces = []
-    for y in range(n - 1):
-        for x in range(n - 1):
-            a = y * n + x
-            faces += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
-    return vertices, np.array(faces)
+GRID = (5, 4.0)  # 5 by 5 vertices at integer coordinates: vertex 24 is (4, 4, 0)
+SMALL_GRID = (3, 2.0)
 
 
 def bent(vertices: np.ndarray, amount: float) -> np.ndarray:
@@ -30,7 +23,7 @@ def bent(vertices: np.ndarray, amount: float) -> np.ndarray:
 @pytest.fixture
 def grid_set():
     """A MeshSet: a 5x5 grid as the rest layer, two bent examples, vertices 0 and 24 selected."""
-    vertices, faces = grid()
+    vertices, faces = grid(*GRID)
     ms = mesh_set(vertices, faces, [bent(vertices, 0.1), bent(vertices, -0.2)])
     select_vertices(ms, [0, 24])
     return ms
@@ -62,7 +55,7 @@ def test_no_vertex_selected(grid_set):
 
 
 def test_no_example_layer():
-    vertices, faces = grid()
+    vertices, faces = grid(*GRID)
     ms = mesh_set(vertices, faces, [])
     select_vertices(ms, [0])
     raises(ms, POSE, "no example layer", "25 vertices and 32 triangles", targetsource="Handle transform")
@@ -70,7 +63,7 @@ def test_no_example_layer():
 
 
 def test_example_with_other_triangles_is_named():
-    vertices, faces = grid()
+    vertices, faces = grid(*GRID)
     other = faces.copy()
     other[7] = other[7][[0, 2, 1]]  # the same counts, one triangle flipped
     ms = mesh_set(vertices, faces, [bent(vertices, 0.1)], labels=["good"])
@@ -82,7 +75,7 @@ def test_example_with_other_triangles_is_named():
 
 
 def test_named_example_with_other_vertex_count_is_named(grid_set):
-    small_vertices, small_faces = grid(3)
+    small_vertices, small_faces = grid(*SMALL_GRID)
     grid_set.add_mesh(pymeshlab.Mesh(small_vertices, small_faces), "small")
     grid_set.set_current_mesh(0)
     raises(grid_set, POSE, '"small"', "9 vertices", "25", examplelayers="1, small",
@@ -94,7 +87,7 @@ def test_named_example_with_other_vertex_count_is_named(grid_set):
 
 
 def test_degenerate_rest_triangle():
-    vertices, faces = grid()
+    vertices, faces = grid(*GRID)
     collapsed = vertices.copy()
     collapsed[6] = collapsed[0]  # triangles 0 (0, 1, 6) and 1 (0, 6, 5) lose their area
     ms = mesh_set(collapsed, faces, [bent(vertices, 0.1)])
@@ -104,7 +97,7 @@ def test_degenerate_rest_triangle():
 
 
 def test_non_finite_example_names_its_layer():
-    vertices, faces = grid()
+    vertices, faces = grid(*GRID)
     broken = bent(vertices, 0.2)
     broken[3, 1] = np.nan
     ms = mesh_set(vertices, faces, [bent(vertices, 0.1), broken], labels=["fine", "broken"])
@@ -114,7 +107,7 @@ def test_non_finite_example_names_its_layer():
 
 
 def test_target_layer_with_other_vertex_count(grid_set):
-    small_vertices, small_faces = grid(3)
+    small_vertices, small_faces = grid(*SMALL_GRID)
     grid_set.add_mesh(pymeshlab.Mesh(small_vertices, small_faces), "small")
     grid_set.set_current_mesh(0)
     raises(grid_set, POSE, "targetmesh", '"small"', "9 vertices", targetsource="Target layer", targetmesh=3)
