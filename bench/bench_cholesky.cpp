@@ -38,8 +38,11 @@ struct Options {
   std::string only;
 };
 
-// Median over `reps` runs of `run` in milliseconds; `prepare` runs untimed before each.
+// Median over `reps` runs of `run` in milliseconds, after one untimed warm-up run; `prepare`
+// runs untimed before each.
 double median_ms(int reps, const std::function<void()>& prepare, const std::function<void()>& run) {
+  prepare();
+  run();
   std::vector<double> ms;
   for (int r = 0; r < reps; ++r) {
     prepare();
