@@ -76,6 +76,16 @@ TEST(SparseCholesky, DisconnectedBlocks) {
   expect_matches_dense(dense, 4, 30);
 }
 
+TEST(SparseCholesky, OverlappingDenseBlocks) {
+  // Two dense 100 x 100 blocks sharing 10 unknowns: supernodes of about 90 columns with rows
+  // below them, so the blocked panel and the chunked update product are exercised.
+  const int block = 100, shared = 10, n = 2 * block - shared;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  dense.topLeftCorner(block, block) += random_spd(block, 1.0, 41);
+  dense.bottomRightCorner(block, block) += random_spd(block, 1.0, 42);
+  expect_matches_dense(dense, 5, 43);
+}
+
 TEST(SparseCholesky, EmptyMatrix) {
   CscMatrix a;
   a.col_start = {0};

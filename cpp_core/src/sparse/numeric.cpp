@@ -6,19 +6,12 @@
 
 #include "meshik/sparse_cholesky.h"
 #include "sparse/dense_kernels.h"
+#include "sparse/simd.h"
 #include "sparse/simplicial_prefix.h"
 
 namespace meshik::sparse {
 
 namespace {
-
-// Work arrays of one factorization.
-struct Workspace {
-  std::vector<int> position;            // n: row -> index in the current supernode's rows
-  std::vector<int> relative;            // a child's update rows as indices in the parent
-  std::vector<double> stack;            // update matrices waiting for their parents
-  std::vector<size_t> stack_offset;     // #S: where each supernode's update matrix sits
-};
 
 // Adds the lower triangle's columns first .. first+k-1 into the r by k block `block`
 // (rows: position[]).
@@ -32,29 +25,56 @@ void gather_columns(const Pattern& lower, const double* lower_values, int first,
   }
 }
 
-// The update matrix `u` of a child (packed lower, m by m) has rows `relative` (m entries,
-// increasing) in its parent's numbering. Adds its columns q with relative[q] < k (the parent's
-// pivot columns) into the parent's r by k block; returns the first other column.
-int add_to_pivot_block(const double* u, int m, const int* relative, int k, int r, double* block) {
+// dst[0 .. count) += src[0 .. count).
+void add_contiguous(double* dst, const double* src, int count) {
+  int i = 0;
+  for (; i + kLanes <= count; i += kLanes) store(dst + i, load(dst + i) + load(src + i));
+  if (i < count) store_lanes(dst + i, load_first(dst + i, count - i) + load_first(src + i, count - i), 0, count - i);
+}
+
+// A child's update matrix as its parent sees it.
+struct ChildUpdate {
+  const double* u;        // packed lower, m by m
+  int m;
+  const int* relative;    // m: the child's update rows as indices in the parent's rows, increasing
+  int contiguous_from;    // rows contiguous_from .. m-1 are consecutive in the parent too
+};
+
+// Adds column q of the child's update matrix (rows q .. m-1) to dst[relative[p] - shift].
+void add_child_column(const ChildUpdate& c, int q, double* dst, int shift) {
+  const double* uq = c.u + packed_column_offset(c.m, q) - q;  // uq[p] is U(p, q)
+  const int scattered_end = std::max(q, c.contiguous_from);
+  for (int p = q; p < scattered_end; ++p) dst[c.relative[p] - shift] += uq[p];
+  if (scattered_end < c.m)
+    add_contiguous(dst + c.relative[scattered_end] - shift, uq + scattered_end, c.m - scattered_end);
+}
+
+// Adds the child's columns q with relative[q] < k (the parent's pivot columns) into the
+// parent's r by k block; returns the first other column.
+int add_to_pivot_block(const ChildUpdate& c, int k, int r, double* block) {
   int q = 0;
-  for (const double* uq = u; q < m && relative[q] < k; uq += m - q, ++q) {
-    double* column = block + static_cast<long>(relative[q]) * r;
-    for (int p = q; p < m; ++p) column[relative[p]] += uq[p - q];
-  }
+  for (; q < c.m && c.relative[q] < k; ++q) add_child_column(c, q, block + static_cast<long>(c.relative[q]) * r, 0);
   return q;
 }
 
-// Adds the columns q >= first_q of a child's update matrix (as above) into the parent's own
-// update matrix (packed lower, parent_m by parent_m, rows shifted by the parent's k).
-void add_to_update(const double* u, int m, const int* relative, int first_q, int k, double* parent_u,
-                   int parent_m) {
-  for (int q = first_q; q < m; ++q) {
-    const double* uq = u + packed_column_offset(m, q);
-    const int target = relative[q] - k;
-    double* column = parent_u + packed_column_offset(parent_m, target) - target;
-    for (int p = q; p < m; ++p) column[relative[p] - k] += uq[p - q];
+// Adds the child's columns q >= first_q into the parent's own update matrix (packed lower,
+// parent_m by parent_m, its rows the parent's rows from k on).
+void add_to_update(const ChildUpdate& c, int first_q, int k, double* parent_u, int parent_m) {
+  for (int q = first_q; q < c.m; ++q) {
+    const int target = c.relative[q] - k;
+    add_child_column(c, q, parent_u + packed_column_offset(parent_m, target) - target, k);
   }
 }
+
+// Work arrays of one factorization.
+struct Workspace {
+  std::vector<int> position;            // n: row -> index in the current supernode's rows
+  std::vector<int> relative;            // the children's update rows as indices in the parent
+  std::vector<ChildUpdate> children;    // the current supernode's children
+  std::vector<int> first_update_column; // per child: its first column past the parent's pivots
+  std::vector<double> stack;            // update matrices waiting for their parents
+  std::vector<size_t> stack_offset;     // #S: where each supernode's update matrix sits
+};
 
 }  // namespace
 
@@ -78,7 +98,7 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
   values.resize(f.value_start[ns]);
   Workspace w;
   w.position.resize(f.n);
-  w.relative.resize(f.n);
+  w.relative.resize(f.rows.size());  // the children's rows are disjoint parts of f.rows
   w.stack.resize(f.stack_size);
   w.stack_offset.resize(ns);
   size_t top = 0;
@@ -96,13 +116,20 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
     // Children's contributions to the pivot columns, before the dense factorization.
     const int* child = f.children.data() + f.child_start[s];
     const int num_children = f.child_start[s + 1] - f.child_start[s];
+    w.children.clear();
+    w.first_update_column.clear();
+    int* relative = w.relative.data();
     for (int c = 0; c < num_children; ++c) {
       const int ch = child[c];
       const int child_k = f.first_column[ch + 1] - f.first_column[ch];
       const int child_m = f.row_start[ch + 1] - f.row_start[ch] - child_k;
       const int* child_rows = f.rows.data() + f.row_start[ch] + child_k;
-      for (int q = 0; q < child_m; ++q) w.relative[q] = w.position[child_rows[q]];
-      add_to_pivot_block(w.stack.data() + w.stack_offset[ch], child_m, w.relative.data(), k, r, block);
+      for (int q = 0; q < child_m; ++q) relative[q] = w.position[child_rows[q]];
+      int contiguous_from = child_m - 1;
+      while (contiguous_from > 0 && relative[contiguous_from - 1] == relative[contiguous_from] - 1) --contiguous_from;
+      w.children.push_back({w.stack.data() + w.stack_offset[ch], child_m, relative, contiguous_from});
+      w.first_update_column.push_back(add_to_pivot_block(w.children.back(), k, r, block));
+      relative += child_m;
     }
 
     const int failed = factor_panel(block, r, k);
@@ -111,16 +138,7 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
     // Own update matrix on top of the children's, then the rest of the children's updates.
     double* u = w.stack.data() + top;
     if (m > 0) negative_lower_product(block + k, r, m, k, u);
-    for (int c = 0; c < num_children; ++c) {
-      const int ch = child[c];
-      const int child_k = f.first_column[ch + 1] - f.first_column[ch];
-      const int child_m = f.row_start[ch + 1] - f.row_start[ch] - child_k;
-      const int* child_rows = f.rows.data() + f.row_start[ch] + child_k;
-      for (int q = 0; q < child_m; ++q) w.relative[q] = w.position[child_rows[q]];
-      int first_q = 0;
-      while (first_q < child_m && w.relative[first_q] < k) ++first_q;
-      add_to_update(w.stack.data() + w.stack_offset[ch], child_m, w.relative.data(), first_q, k, u, m);
-    }
+    for (size_t c = 0; c < w.children.size(); ++c) add_to_update(w.children[c], w.first_update_column[c], k, u, m);
     // Pop the children and move the new update matrix down in their place.
     const size_t base = num_children > 0 ? w.stack_offset[child[0]] : top;
     if (m > 0 && base != top) std::memmove(w.stack.data() + base, u, packed_size(m) * sizeof(double));
