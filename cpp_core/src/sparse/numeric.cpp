@@ -6,7 +6,6 @@
 
 #include "meshik/sparse_cholesky.h"
 #include "sparse/dense_kernels.h"
-#include "sparse/simd.h"
 #include "sparse/simplicial_prefix.h"
 
 namespace meshik::sparse {
@@ -25,28 +24,17 @@ void gather_columns(const Pattern& lower, const double* lower_values, int first,
   }
 }
 
-// dst[0 .. count) += src[0 .. count).
-void add_contiguous(double* dst, const double* src, int count) {
-  int i = 0;
-  for (; i + kLanes <= count; i += kLanes) store(dst + i, load(dst + i) + load(src + i));
-  if (i < count) store_lanes(dst + i, load_first(dst + i, count - i) + load_first(src + i, count - i), 0, count - i);
-}
-
 // A child's update matrix as its parent sees it.
 struct ChildUpdate {
   const double* u;        // packed lower, m by m
   int m;
   const int* relative;    // m: the child's update rows as indices in the parent's rows, increasing
-  int contiguous_from;    // rows contiguous_from .. m-1 are consecutive in the parent too
 };
 
 // Adds column q of the child's update matrix (rows q .. m-1) to dst[relative[p] - shift].
 void add_child_column(const ChildUpdate& c, int q, double* dst, int shift) {
   const double* uq = c.u + packed_column_offset(c.m, q) - q;  // uq[p] is U(p, q)
-  const int scattered_end = std::max(q, c.contiguous_from);
-  for (int p = q; p < scattered_end; ++p) dst[c.relative[p] - shift] += uq[p];
-  if (scattered_end < c.m)
-    add_contiguous(dst + c.relative[scattered_end] - shift, uq + scattered_end, c.m - scattered_end);
+  for (int p = q; p < c.m; ++p) dst[c.relative[p] - shift] += uq[p];
 }
 
 // Adds the child's columns q with relative[q] < k (the parent's pivot columns) into the
@@ -125,9 +113,7 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
       const int child_m = f.row_start[ch + 1] - f.row_start[ch] - child_k;
       const int* child_rows = f.rows.data() + f.row_start[ch] + child_k;
       for (int q = 0; q < child_m; ++q) relative[q] = w.position[child_rows[q]];
-      int contiguous_from = child_m - 1;
-      while (contiguous_from > 0 && relative[contiguous_from - 1] == relative[contiguous_from] - 1) --contiguous_from;
-      w.children.push_back({w.stack.data() + w.stack_offset[ch], child_m, relative, contiguous_from});
+      w.children.push_back({w.stack.data() + w.stack_offset[ch], child_m, relative});
       w.first_update_column.push_back(add_to_pivot_block(w.children.back(), k, r, block));
       relative += child_m;
     }
