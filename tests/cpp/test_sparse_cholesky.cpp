@@ -195,6 +195,21 @@ TEST(SparseCholesky, IndefiniteMatrixNamesTheColumn) {
   EXPECT_THROW(chol.solve(b.data(), 1), std::logic_error);
 }
 
+TEST(SparseCholesky, NegativePivotInADenseBlockNamesItsColumn) {
+  // Every principal submatrix without column 77 is positive definite (diagonally dominant),
+  // so whatever the order, the first pivot that fails is column 77's, inside one supernode
+  // of 100 columns (the blocked panel factorization).
+  Eigen::MatrixXd dense = random_spd(100, 1.0, 5);
+  dense(77, 77) = -50.0;
+  SparseCholesky chol;
+  try {
+    chol.compute(lower_from_dense(dense));
+    FAIL() << "expected NotPositiveDefinite";
+  } catch (const meshik::NotPositiveDefinite& e) {
+    EXPECT_NE(std::string(e.what()).find("column 77 "), std::string::npos) << e.what();
+  }
+}
+
 TEST(SparseCholesky, IndefiniteLaplacianIsRejected) {
   // Graph Laplacian shifted below zero: its smallest eigenvalue is -0.05.
   const CscMatrix a = grid_laplacian(6, 5, -0.05);
