@@ -169,9 +169,12 @@ void bench_matrix(const std::string& name, const CscMatrix& a, const Options& op
     return x.analyze_ms + x.numeric_ms < y.analyze_ms + y.numeric_ms;
   });
   const double our_factor = ours.analyze_ms + ours.numeric_ms;
-  std::printf("  floor: factor %.2f ms <= 60 ms: %s; <= fastest library (%s, %.2f ms): %s\n", our_factor,
-              our_factor <= 60.0 ? "yes" : "NO", fastest->name.c_str(), fastest->analyze_ms + fastest->numeric_ms,
+  std::printf("  floor: factor %.2f ms <= fastest library (%s, %.2f ms): %s", our_factor, fastest->name.c_str(),
+              fastest->analyze_ms + fastest->numeric_ms,
               our_factor <= fastest->analyze_ms + fastest->numeric_ms ? "yes" : "NO");
+  if (name.find("elephant") != std::string::npos)  // the project's floor for the elephant
+    std::printf("; <= 60 ms: %s", our_factor <= 60.0 ? "yes" : "NO");
+  std::printf("\n");
   std::printf("  OUR/THEIRS (factor = analyze + numeric; below 1 means MeshIK is faster)\n");
   for (const Result& r : theirs)
     std::printf("    vs %-30s factor %.2f  numeric %.2f  analyze %.2f  solve %.2f\n", r.name.c_str(),
