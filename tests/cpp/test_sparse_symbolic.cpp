@@ -191,13 +191,17 @@ TEST(SparseSymbolic, PostorderVisitsDescendantsFirstAndContiguously) {
     position[post[k]] = static_cast<int>(k);
   }
   for (size_t j = 0; j < parent.size(); ++j) {
-    if (parent[j] != -1) EXPECT_LT(position[j], position[parent[j]]);
+    if (parent[j] != -1) {
+      EXPECT_LT(position[j], position[parent[j]]);
+    }
   }
   // The subtree of 6 is {0, 1, 2, 3, 4, 6}: six consecutive positions ending at 6's.
   for (int j : {0, 1, 2, 3, 4}) EXPECT_GE(position[j], position[6] - 5);
   // Relabelled by the postorder, every parent is larger than its child.
   const std::vector<int> relabeled = relabel_tree(parent, post);
   for (size_t k = 0; k < relabeled.size(); ++k) {
-    if (relabeled[k] != -1) EXPECT_GT(relabeled[k], static_cast<int>(k));
+    if (relabeled[k] != -1) {
+      EXPECT_GT(relabeled[k], static_cast<int>(k));
+    }
   }
 }
