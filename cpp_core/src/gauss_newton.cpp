@@ -76,4 +76,11 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
   return result;
 }
 
+Eigen::VectorXd linear_space_weights(PoseEvaluator& linear_evaluator, int num_examples) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(num_examples);
+  PoseEvaluation at_rest;
+  linear_evaluator.evaluate(zero.data(), true, at_rest);
+  return gauss_newton_model(at_rest.schur, at_rest.step_rhs, step_scale(at_rest.schur)).delta;
+}
+
 }  // namespace meshik

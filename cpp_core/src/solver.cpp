@@ -36,9 +36,16 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   const ExampleSet::Impl& set = impl_->examples->impl();
   validate_targets(targets, impl_->handles);
   if (initial_weights != nullptr) validate_finite(initial_weights, set.num_examples, "initial weight");
-  PoseEvaluator evaluator(set, *impl_->system, impl_->options.feature_space,
-                          impl_->options.weight_regularization, targets);
-  return gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, impl_->options, progress);
+  const SolverOptions& options = impl_->options;
+  Eigen::VectorXd start;
+  if (initial_weights == nullptr && options.feature_space == FeatureSpace::kNonlinear &&
+      set.num_examples > 0) {
+    PoseEvaluator linear(set, *impl_->system, FeatureSpace::kLinear, options.weight_regularization, targets);
+    start = linear_space_weights(linear, set.num_examples);
+    initial_weights = start.data();
+  }
+  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization, targets);
+  return gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, options, progress);
 }
 
 const ExampleSet& Solver::examples() const { return *impl_->examples; }

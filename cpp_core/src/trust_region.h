@@ -23,6 +23,7 @@ TrustRegionStep trust_region_step(const Eigen::MatrixXd& h, const Eigen::VectorX
 // left out): its scaled length |D delta| (the first radius) and its model decrease g.delta (a
 // measure of stationarity that does not depend on the radius).
 struct GaussNewtonModel {
+  Eigen::VectorXd delta;  // the step
   double scaled_length = 0.0;
   double decrease = 0.0;
 };

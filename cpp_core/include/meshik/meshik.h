@@ -115,7 +115,10 @@ class Solver {
   Solver& operator=(Solver&&) noexcept;
 
   // targets:         #H by 3 row-major target positions, in the order of the handles
-  // initial_weights: #E starting weights (warm start), or nullptr for the rest pose (w = 0)
+  // initial_weights: #E starting weights (warm start, e.g. the previous frame's), or nullptr:
+  //                  start from w = 0 in the linear space, and in the nonlinear space from the
+  //                  weights that are optimal in the linear space (one extra evaluation; the
+  //                  rest pose may lie in the basin of a worse local minimum)
   // Never refactors: only the right-hand side changes with the targets.
   SolveResult solve(const double* targets, const double* initial_weights = nullptr,
                     const ProgressCallback& progress = {}) const;
