@@ -19,12 +19,6 @@ namespace {
 // squared differences of deformation gradients, O(1) per triangle).
 constexpr double kNoiseEnergyPerTriangle = 1e-20;
 
-// sqrt(diag S), floored at a small fraction of the largest entry: the trust region's scaling.
-Eigen::VectorXd step_scale(const Eigen::MatrixXd& schur) {
-  const double largest = std::max(schur.diagonal().maxCoeff(), 1e-300);
-  return schur.diagonal().cwiseMax(1e-12 * largest).cwiseSqrt();
-}
-
 }  // namespace
 
 SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_triangles,
@@ -41,7 +35,7 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
   result.energies.push_back(current.energy);
   double radius = -1.0;  // set from the first Gauss-Newton step
   while (k > 0) {
-    const Eigen::VectorXd scale = step_scale(current.schur);
+    const Eigen::VectorXd scale = trust_region_scale(current.schur);
     const GaussNewtonModel gauss_newton = gauss_newton_model(current.schur, current.step_rhs, scale);
     if (!(gauss_newton.decrease > options.tolerance * current.energy + noise)) {
       result.converged = true;
@@ -49,6 +43,7 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
     }
     if (result.iterations == options.max_iterations) break;
     if (radius < 0.0) radius = gauss_newton.scaled_length;
+    if (!current.has_second_order) evaluator.add_second_order(current);
     const TrustRegionStep step = trust_region_step(current.schur + current.second_order,
                                                    current.step_rhs, scale, radius);
     const Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(current.weights.data(), k) + step.delta;
@@ -74,13 +69,6 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
   result.weights = std::move(current.weights);
   result.residual = current.energy;
   return result;
-}
-
-Eigen::VectorXd linear_space_weights(PoseEvaluator& linear_evaluator, int num_examples) {
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(num_examples);
-  PoseEvaluation at_rest;
-  linear_evaluator.evaluate(zero.data(), true, at_rest);
-  return gauss_newton_model(at_rest.schur, at_rest.step_rhs, step_scale(at_rest.schur)).delta;
 }
 
 }  // namespace meshik

@@ -26,10 +26,4 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
                          const double* initial_weights, const SolverOptions& options,
                          const ProgressCallback& progress);
 
-// The weights (#E) minimising the energy in the linear feature space, where it is quadratic in w:
-// one evaluation at w = 0 and one Gauss-Newton step. linear_evaluator: set up with
-// FeatureSpace::kLinear for the same handles and targets. A good start for the nonlinear space:
-// the rest pose (w = 0) can lie in the basin of a worse local minimum.
-Eigen::VectorXd linear_space_weights(PoseEvaluator& linear_evaluator, int num_examples);
-
 }  // namespace meshik

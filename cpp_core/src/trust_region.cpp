@@ -39,6 +39,11 @@ double shifted_length(const ScaledModel& m, double mu) {
 
 }  // namespace
 
+Eigen::VectorXd trust_region_scale(const Eigen::MatrixXd& s) {
+  const double largest = std::max(s.diagonal().maxCoeff(), 1e-300);
+  return s.diagonal().cwiseMax(1e-12 * largest).cwiseSqrt();
+}
+
 TrustRegionStep trust_region_step(const Eigen::MatrixXd& h, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& scale, double radius) {
   const ScaledModel m = scaled_model(h, g, scale);

@@ -31,7 +31,7 @@ std::vector<double> blend_of(const meshik::ExampleFeatures& features, FeatureSpa
   return block;
 }
 
-// The in-plane gradient Q_j(x) (3 by 2 row-major) of positions x.
+// The in-plane gradient Q_j(x) (3 by 2 row-major) of positions x (internal order).
 std::vector<double> in_plane_gradient(const meshik::ExampleSet::Impl& set, const double* x, int j) {
   std::vector<double> q(6, 0.0);
   for (int c = 0; c < 3; ++c)
@@ -54,10 +54,11 @@ TEST_P(Features, ZeroWeightsGiveTheRestAndUnitWeightsGiveTheExample) {
   for (int i = -1; i < k; ++i) {
     std::vector<double> w(k, 0.0);
     if (i >= 0) w[i] = 1.0;
-    const double* pose = i < 0 ? meshes_.rest.data() : meshes_.examples[i].data();
+    const std::vector<double> pose =
+        impl().to_internal(i < 0 ? meshes_.rest.data() : meshes_.examples[i].data());
     for (int j = 0; j < meshes_.num_triangles(); ++j) {
       const std::vector<double> f = blend_of(impl().features, GetParam(), w, j);
-      const std::vector<double> q = in_plane_gradient(impl(), pose, j);
+      const std::vector<double> q = in_plane_gradient(impl(), pose.data(), j);
       for (int e = 0; e < 6; ++e) EXPECT_NEAR(f[e], q[e], 1e-12) << "example " << i << " triangle " << j;
     }
   }
@@ -85,11 +86,15 @@ TEST_P(Features, ReducedEnergyGradientAndHessianMatchFiniteDifferences) {
   const std::vector<int> handles = meshik_test::farthest_point_handles(meshes_.rest, 8);
   std::vector<double> targets = meshik_test::gather_rows(meshes_.examples[0], handles);
   for (size_t e = 0; e < targets.size(); ++e) targets[e] += 0.3 * meshes_.examples[1][3 * handles[e / 3] + e % 3];
-  const meshik::PoseSystem system(impl(), handles);
-  meshik::PoseEvaluator evaluator(impl(), system, GetParam(), 0.5, targets.data());
+  std::vector<int> internal_handles;
+  for (int h : handles) internal_handles.push_back(impl().internal_of_vertex[h]);
+  const meshik::PoseSystem system(impl(), internal_handles);
+  meshik::EvaluationBuffers buffers;
+  meshik::PoseEvaluator evaluator(impl(), system, GetParam(), 0.5, targets.data(), buffers);
   const std::vector<double> w = {0.6, 0.8, -0.3};
   meshik::PoseEvaluation at, plus, minus;
   evaluator.evaluate(w.data(), true, at);
+  evaluator.add_second_order(at);
   const double h = 1e-5;
   for (int i = 0; i < 3; ++i) {
     std::vector<double> wp = w, wm = w;
@@ -166,11 +171,7 @@ TEST(FeatureBranches, ATwistBeyondAHalfTurnBlendsHalfWayWithoutUnwinding) {
 
   // The same blend from the principal logs (no branch choice) unwinds the far end and flips.
   meshik::ExampleSet principal(twisted.view(), {example});
-  auto& impl = const_cast<meshik::ExampleSet::Impl&>(principal.impl());
-  const auto adjacency =
-      meshik::triangle_adjacency(twisted.triangles.data(), twisted.num_triangles(), twisted.num_vertices());
-  impl.features = meshik::compute_example_features(impl.frames, adjacency, twisted.triangles.data(),
-                                                   {example}, {}, false);
+  meshik_test::use_principal_logs(principal, {example});
   const std::vector<double> unwound = principal.blend(&w);
   EXPECT_GT(meshik_test::rms_vertex_distance(unwound, half.examples[1]), 0.1 * length);
   EXPECT_GT(meshik_test::count_flipped_triangles(unwound, half.examples[1], twisted.triangles), 10);

@@ -9,8 +9,6 @@
 #include <cstdio>
 #include <memory>
 
-#include "example_set_impl.h"
-#include "feature_space.h"
 #include "test_meshik_support.h"
 
 namespace {
@@ -124,9 +122,7 @@ TEST(RealData, CatTailTwistsBlendWithoutFlips) {
     const double* example = meshes.examples[i].data();
     const meshik::ExampleSet consistent(meshes.view(), {example});
     meshik::ExampleSet principal(meshes.view(), {example});
-    auto& impl = const_cast<meshik::ExampleSet::Impl&>(principal.impl());
-    impl.features = meshik::compute_example_features(impl.frames, adjacency, meshes.triangles.data(),
-                                                     {example}, {}, false);
+    meshik_test::use_principal_logs(principal, {example});
     for (double w : {0.25, 0.5, 0.75}) {
       const int good = count_folded_neighbours(meshes, meshes.examples[i], consistent.blend(&w), adjacency);
       const int bad = count_folded_neighbours(meshes, meshes.examples[i], principal.blend(&w), adjacency);

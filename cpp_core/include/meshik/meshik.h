@@ -115,10 +115,10 @@ class Solver {
   Solver& operator=(Solver&&) noexcept;
 
   // targets:         #H by 3 row-major target positions, in the order of the handles
-  // initial_weights: #E starting weights (warm start, e.g. the previous frame's), or nullptr:
-  //                  start from w = 0 in the linear space, and in the nonlinear space from the
-  //                  weights that are optimal in the linear space (one extra evaluation; the
-  //                  rest pose may lie in the basin of a worse local minimum)
+  // initial_weights: #E starting weights (warm start, e.g. the previous frame's), or nullptr to
+  //                  start from the weights that are optimal in the linear feature space (the
+  //                  linear space's solution; for the nonlinear space a better start than the
+  //                  rest pose w = 0, which may lie in the basin of a worse local minimum)
   // Never refactors: only the right-hand side changes with the targets.
   SolveResult solve(const double* targets, const double* initial_weights = nullptr,
                     const ProgressCallback& progress = {}) const;
