@@ -38,8 +38,11 @@ struct Options {
   std::string only;
 };
 
-// Median over `reps` runs of `run` in milliseconds; `prepare` runs untimed before each.
+// Median over `reps` runs of `run` in milliseconds, after one untimed warm-up run; `prepare`
+// runs untimed before each.
 double median_ms(int reps, const std::function<void()>& prepare, const std::function<void()>& run) {
+  prepare();
+  run();
   std::vector<double> ms;
   for (int r = 0; r < reps; ++r) {
     prepare();
@@ -162,6 +165,16 @@ void bench_matrix(const std::string& name, const CscMatrix& a, const Options& op
                                 bench_cholmod(a, b, full, options.reps, true),
                                 bench_eigen_ldlt(a, b, full, options.reps)};
   for (const Result& r : theirs) print_row(r);
+  const auto fastest = std::min_element(theirs.begin(), theirs.end(), [](const Result& x, const Result& y) {
+    return x.analyze_ms + x.numeric_ms < y.analyze_ms + y.numeric_ms;
+  });
+  const double our_factor = ours.analyze_ms + ours.numeric_ms;
+  std::printf("  floor: factor %.2f ms <= fastest library (%s, %.2f ms): %s", our_factor, fastest->name.c_str(),
+              fastest->analyze_ms + fastest->numeric_ms,
+              our_factor <= fastest->analyze_ms + fastest->numeric_ms ? "yes" : "NO");
+  if (name.find("elephant") != std::string::npos)  // the project's floor for the elephant
+    std::printf("; <= 60 ms: %s", our_factor <= 60.0 ? "yes" : "NO");
+  std::printf("\n");
   std::printf("  OUR/THEIRS (factor = analyze + numeric; below 1 means MeshIK is faster)\n");
   for (const Result& r : theirs)
     std::printf("    vs %-30s factor %.2f  numeric %.2f  analyze %.2f  solve %.2f\n", r.name.c_str(),

@@ -76,6 +76,16 @@ TEST(SparseCholesky, DisconnectedBlocks) {
   expect_matches_dense(dense, 4, 30);
 }
 
+TEST(SparseCholesky, OverlappingDenseBlocks) {
+  // Two dense 100 x 100 blocks sharing 10 unknowns: supernodes of about 90 columns with rows
+  // below them, so the blocked panel and the chunked update product are exercised.
+  const int block = 100, shared = 10, n = 2 * block - shared;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  dense.topLeftCorner(block, block) += random_spd(block, 1.0, 41);
+  dense.bottomRightCorner(block, block) += random_spd(block, 1.0, 42);
+  expect_matches_dense(dense, 5, 43);
+}
+
 TEST(SparseCholesky, EmptyMatrix) {
   CscMatrix a;
   a.col_start = {0};
@@ -183,6 +193,21 @@ TEST(SparseCholesky, IndefiniteMatrixNamesTheColumn) {
   // No solve after a failed factorization.
   std::vector<double> b(2, 1.0);
   EXPECT_THROW(chol.solve(b.data(), 1), std::logic_error);
+}
+
+TEST(SparseCholesky, NegativePivotInADenseBlockNamesItsColumn) {
+  // Every principal submatrix without column 77 is positive definite (diagonally dominant),
+  // so whatever the order, the first pivot that fails is column 77's, inside one supernode
+  // of 100 columns (the blocked panel factorization).
+  Eigen::MatrixXd dense = random_spd(100, 1.0, 5);
+  dense(77, 77) = -50.0;
+  SparseCholesky chol;
+  try {
+    chol.compute(lower_from_dense(dense));
+    FAIL() << "expected NotPositiveDefinite";
+  } catch (const meshik::NotPositiveDefinite& e) {
+    EXPECT_NE(std::string(e.what()).find("column 77 "), std::string::npos) << e.what();
+  }
 }
 
 TEST(SparseCholesky, IndefiniteLaplacianIsRejected) {

@@ -190,12 +190,18 @@ TEST(SparseSymbolic, PostorderVisitsDescendantsFirstAndContiguously) {
     ASSERT_EQ(position[post[k]], -1) << "node visited twice";
     position[post[k]] = static_cast<int>(k);
   }
-  for (size_t j = 0; j < parent.size(); ++j)
-    if (parent[j] != -1) EXPECT_LT(position[j], position[parent[j]]);
+  for (size_t j = 0; j < parent.size(); ++j) {
+    if (parent[j] != -1) {
+      EXPECT_LT(position[j], position[parent[j]]);
+    }
+  }
   // The subtree of 6 is {0, 1, 2, 3, 4, 6}: six consecutive positions ending at 6's.
   for (int j : {0, 1, 2, 3, 4}) EXPECT_GE(position[j], position[6] - 5);
   // Relabelled by the postorder, every parent is larger than its child.
   const std::vector<int> relabeled = relabel_tree(parent, post);
-  for (size_t k = 0; k < relabeled.size(); ++k)
-    if (relabeled[k] != -1) EXPECT_GT(relabeled[k], static_cast<int>(k));
+  for (size_t k = 0; k < relabeled.size(); ++k) {
+    if (relabeled[k] != -1) {
+      EXPECT_GT(relabeled[k], static_cast<int>(k));
+    }
+  }
 }

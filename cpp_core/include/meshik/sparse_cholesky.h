@@ -1,6 +1,20 @@
-// MeshIK's own sparse Cholesky factorization A = L L^T (or L D L^T) of a symmetric positive
-// definite matrix: fill-reducing ordering, elimination tree, symbolic analysis (reusable while
-// only the values change), numeric factorization and multi-right-hand-side solves.
+// MeshIK's own sparse Cholesky factorization P A P^T = L L^T of a symmetric positive definite
+// matrix: fill-reducing ordering, elimination tree, symbolic analysis (reusable while only the
+// values change), numeric factorization and multi-right-hand-side solves.
+//
+// How (cpp_core/src/sparse/, one step per file):
+//   analysis.cpp        nodes whose neighbours form a clique first (no fill: MeshIK's 4th-vertex
+//                       unknowns), then SuiteSparse AMD on the rest, postordered by its
+//                       elimination tree (elimination_tree.cpp, column_counts.cpp);
+//                       supernodes with relaxed amalgamation (supernodes.cpp) and their row
+//                       structures (symbolic.cpp).
+//   numeric.cpp         the clique nodes eliminated directly on the values (simplicial_prefix.cpp),
+//                       then a multifrontal supernodal factorization with register-tiled dense
+//                       kernels (dense_kernels.cpp, vectorized with simd.h).
+//   triangular_solve.cpp  forward and back substitution over the supernodes, all right-hand
+//                       sides of a pass together (16 per chunk), the factor read once per chunk.
+// Single-threaded; one object is not safe for concurrent analyze/factorize, but concurrent
+// solve() calls on a factored object are (each thread has its own work buffer).
 #pragma once
 
 #include <memory>
@@ -10,7 +24,8 @@
 namespace meshik {
 
 // Compressed sparse column matrix. For SparseCholesky only the lower triangle (row >= col) is
-// read; entries above the diagonal are ignored. Row indices within a column are sorted and unique.
+// read; entries above the diagonal are ignored. Row indices within a column are sorted and
+// unique, and every column stores its diagonal entry.
 struct CscMatrix {
   int rows = 0;
   int cols = 0;
@@ -33,16 +48,20 @@ class SparseCholesky {
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
   // Ordering, elimination tree, column counts and the factor's structure for the pattern of
-  // the n x n lower triangle `a`. Values are not read.
+  // the n x n lower triangle `a`. Values are not read. Throws std::invalid_argument naming the
+  // column or entry when `a` is malformed (not square, indices unsorted / repeated / out of
+  // range, a diagonal entry missing, sizes inconsistent).
   void analyze(const CscMatrix& a);
-  // Numeric factorization of `a`, which must have the pattern given to analyze().
-  // Throws NotPositiveDefinite.
+  // Numeric factorization of `a`, which must have the pattern given to analyze() (else
+  // std::invalid_argument). Throws NotPositiveDefinite naming the (original) column whose pivot
+  // is not positive; solve() is then unavailable until a factorization succeeds.
   void factorize(const CscMatrix& a);
   // analyze() then factorize().
   void compute(const CscMatrix& a);
 
   // Solves A X = B in place. b: n by nrhs row-major (row i holds the nrhs values of unknown i),
-  // so every right-hand side is carried through one pass over the factor.
+  // so every right-hand side is carried through one pass over the factor. Throws
+  // std::logic_error without a successful factorize().
   void solve(double* b, int nrhs) const;
 
   int size() const;

@@ -52,8 +52,10 @@ Analysis analyze_pattern(const CscMatrix& a) {
       rest.push_back(v);
     }
   std::vector<int> rest_perm;
-  analysis.symbolic = supernodal_analysis(prefix_size == 0 ? graph : induced_subgraph(graph, rest, local),
-                                          prefix_size, rest_perm);
+  if (prefix_size == 0)
+    analysis.symbolic = supernodal_analysis(graph, 0, rest_perm);
+  else
+    analysis.symbolic = supernodal_analysis(induced_subgraph(graph, rest, local), prefix_size, rest_perm);
   analysis.perm = simplicial;
   for (int t : rest_perm) analysis.perm.push_back(rest[t]);
   analysis.lower = permute_lower(a, invert_permutation(analysis.perm));

@@ -7,6 +7,7 @@ namespace meshik::sparse {
 
 namespace {
 
+// Throws std::invalid_argument saying `what`.
 [[noreturn]] void fail(const std::string& what) {
   throw std::invalid_argument("SparseCholesky: " + what);
 }

@@ -45,6 +45,36 @@ inline Vec broadcast(double s) {
 #endif
 }
 
+// Lanes [0, count) read from p (0 <= count <= kLanes), the others zero; nothing is read
+// beyond p[count - 1].
+inline Vec load_first(const double* p, int count) {
+#if defined(__AVX512F__)
+  return _mm512_maskz_loadu_pd(static_cast<__mmask8>((1u << count) - 1), p);
+#elif defined(__AVX2__)
+  const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+  return _mm256_maskload_pd(p, _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), lanes));
+#else
+  Vec v = {};
+  for (int i = 0; i < count; ++i) v[i] = p[i];
+  return v;
+#endif
+}
+
+// Writes lanes [begin, end) of v to p[begin .. end) (0 <= begin <= end <= kLanes); nothing
+// else is touched.
+inline void store_lanes(double* p, Vec v, int begin, int end) {
+#if defined(__AVX512F__)
+  _mm512_mask_storeu_pd(p, static_cast<__mmask8>(((1u << end) - 1) & ~((1u << begin) - 1)), v);
+#elif defined(__AVX2__)
+  const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+  const __m256i mask = _mm256_and_si256(_mm256_cmpgt_epi64(_mm256_set1_epi64x(end), lanes),
+                                        _mm256_cmpgt_epi64(lanes, _mm256_set1_epi64x(begin - 1)));
+  _mm256_maskstore_pd(p, mask, v);
+#else
+  for (int i = begin; i < end; ++i) p[i] = v[i];
+#endif
+}
+
 // Rounds count up to a multiple of kLanes.
 inline int round_up_to_lanes(int count) { return (count + kLanes - 1) / kLanes * kLanes; }
 

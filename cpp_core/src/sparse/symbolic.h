@@ -13,7 +13,8 @@ namespace meshik::sparse {
 // Supernode s owns columns first_column[s] .. first_column[s+1]-1 (k of them) and the rows
 // rows[row_start[s] .. row_start[s+1]) (r of them): first its own k columns in order, then the
 // rows below, increasing. Its values are an r by k column-major block at value_start[s]
-// (the part above the diagonal of the leading k by k block is unused).
+// (the part above the diagonal of the leading k by k block is unused; relaxed supernodes
+// also store some explicit zeros).
 struct SymbolicFactor {
   int n = 0;
   std::vector<int> first_column;       // #S + 1
@@ -24,8 +25,8 @@ struct SymbolicFactor {
   std::vector<int> child_start;        // #S + 1 offsets into children
   std::vector<int> children;           // the children of each supernode, increasing
   size_t stack_size = 0;               // doubles needed by the multifrontal update stack
-  int num_supernodes() const { return static_cast<int>(parent.size()); }
   long long structural_nonzeros = 0;   // nnz(L) without explicit zeros, diagonal included
+  int num_supernodes() const { return static_cast<int>(parent.size()); }
 };
 
 // graph: adjacency of the postordered, permuted matrix; parent: its elimination tree;

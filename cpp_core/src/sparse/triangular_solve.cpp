@@ -23,6 +23,12 @@ struct Rows {
     for (int b = 0; b < B; ++b)
       for (int c = 0; c < V; ++c) store(p[b] + c * kLanes, v[b][c]);
   }
+  // every row *= a
+  void scale(double a) {
+    const Vec s = broadcast(a);
+    for (int b = 0; b < B; ++b)
+      for (int c = 0; c < V; ++c) v[b][c] *= s;
+  }
   // row b -= a[b] * x for every b
   void subtract_scaled(const double* a, const double* x) {
     Vec xv[V];
@@ -43,8 +49,7 @@ void diagonal_forward(const double* block, int k, int r, double* xs, long stride
     Rows<V, 1> acc;
     acc.load_from(&xi);
     for (int j = 0; j < i; ++j) acc.subtract_scaled(block + static_cast<long>(j) * r + i, xs + j * stride);
-    const Vec inverse = broadcast(1.0 / block[static_cast<long>(i) * r + i]);
-    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.scale(1.0 / block[static_cast<long>(i) * r + i]);
     acc.store_to(&xi);
   }
 }
@@ -58,8 +63,7 @@ void diagonal_backward(const double* block, int k, int r, double* xs, long strid
     Rows<V, 1> acc;
     acc.load_from(&xj);
     for (int i = j + 1; i < k; ++i) acc.subtract_scaled(lj + i, xs + i * stride);
-    const Vec inverse = broadcast(1.0 / lj[j]);
-    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.scale(1.0 / lj[j]);
     acc.store_to(&xj);
   }
 }
@@ -98,36 +102,29 @@ void update_from_rows_below(const double* block, int k, int r, int j, const int*
 
 constexpr int kGroup = 4;  // rows or columns carried together
 
-// Runs Body<B>::run(args...) for a group size B = count (1 <= count < kGroup).
-template <template <int> class Body, int B = 1, typename... Args>
-void with_group_size(int count, Args&&... args) {
-  if constexpr (B < kGroup) {
-    if (count == B) Body<B>::run(args...);
-    else with_group_size<Body, B + 1>(count, args...);
+// update_rows_below for the last `count` (< kGroup) rows from i.
+template <int V>
+void update_last_rows_below(int count, const double* block, int k, int r, int i, const int* rows,
+                            const double* xs, double* x, long stride) {
+  switch (count) {
+    case 3: update_rows_below<V, 3>(block, k, r, i, rows, xs, x, stride); break;
+    case 2: update_rows_below<V, 2>(block, k, r, i, rows, xs, x, stride); break;
+    case 1: update_rows_below<V, 1>(block, k, r, i, rows, xs, x, stride); break;
+    default: break;
   }
 }
 
-// update_rows_below / update_from_rows_below as group bodies for with_group_size.
+// update_from_rows_below for the last `count` (< kGroup) columns from j.
 template <int V>
-struct RowsBelow {
-  template <int B>
-  struct Group {
-    static void run(const double* block, int k, int r, int i, const int* rows, const double* xs, double* x,
-                    long stride) {
-      update_rows_below<V, B>(block, k, r, i, rows, xs, x, stride);
-    }
-  };
-};
-template <int V>
-struct FromRowsBelow {
-  template <int B>
-  struct Group {
-    static void run(const double* block, int k, int r, int j, const int* rows, double* xs, const double* x,
-                    long stride) {
-      update_from_rows_below<V, B>(block, k, r, j, rows, xs, x, stride);
-    }
-  };
-};
+void update_last_from_rows_below(int count, const double* block, int k, int r, int j, const int* rows,
+                                 double* xs, const double* x, long stride) {
+  switch (count) {
+    case 3: update_from_rows_below<V, 3>(block, k, r, j, rows, xs, x, stride); break;
+    case 2: update_from_rows_below<V, 2>(block, k, r, j, rows, xs, x, stride); break;
+    case 1: update_from_rows_below<V, 1>(block, k, r, j, rows, xs, x, stride); break;
+    default: break;
+  }
+}
 
 // Forward pass over the simplicial prefix for one chunk: x_u /= L(u, u), then
 // x_r -= L(r, u) x_u for its rows r.
@@ -137,8 +134,7 @@ void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, doubl
     double* xu = x + u * stride;
     Rows<V, 1> acc;
     acc.load_from(&xu);
-    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
-    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.scale(1.0 / factor.prefix_diagonal[u]);
     acc.store_to(&xu);
     for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t) {
       double* xr = x + p.rows[t] * stride;
@@ -160,8 +156,7 @@ void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, doub
     acc.load_from(&xu);
     for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t)
       acc.subtract_scaled(&factor.prefix_below[t], x + p.rows[t] * stride);
-    const Vec inverse = broadcast(1.0 / factor.prefix_diagonal[u]);
-    for (int c = 0; c < V; ++c) acc.v[0][c] *= inverse;
+    acc.scale(1.0 / factor.prefix_diagonal[u]);
     acc.store_to(&xu);
   }
 }
@@ -181,7 +176,7 @@ void forward_chunk(const Analysis& analysis, const FactorValues& factor, double*
     diagonal_forward<V>(block, k, r, xs, stride);
     int i = k;
     for (; i + kGroup <= r; i += kGroup) update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
-    with_group_size<RowsBelow<V>::template Group>(r - i, block, k, r, i, rows, xs, x, stride);
+    update_last_rows_below<V>(r - i, block, k, r, i, rows, xs, x, stride);
   }
 }
 
@@ -198,7 +193,7 @@ void backward_chunk(const Analysis& analysis, const FactorValues& factor, double
     double* xs = x + f.first_column[s] * stride;
     int j = 0;
     for (; j + kGroup <= k; j += kGroup) update_from_rows_below<V, kGroup>(block, k, r, j, rows, xs, x, stride);
-    with_group_size<FromRowsBelow<V>::template Group>(k - j, block, k, r, j, rows, xs, x, stride);
+    update_last_from_rows_below<V>(k - j, block, k, r, j, rows, xs, x, stride);
     diagonal_backward<V>(block, k, r, xs, stride);
   }
   prefix_backward<V>(analysis.prefix, factor, x, stride);
