@@ -106,8 +106,9 @@ class Solver {
  public:
   // examples: a shared, validated example set (kept alive by the solver)
   // handles:  #H distinct vertex indices constrained by solve()
-  // Factors G'^T G' once; throws InputError (no handle, handle out of range or repeated,
-  // a connected component without a handle).
+  // Factors G'^T G' once (and solves once for what the linear feature space needs per handle
+  // set); throws InputError (no handle, handle out of range or repeated, a connected component
+  // without a handle). solve() may be called from several threads at once.
   Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int>& handles,
          const SolverOptions& options = {}, const ProgressCallback& progress = {});
   ~Solver();
