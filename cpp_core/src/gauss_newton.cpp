@@ -2,12 +2,8 @@
 // model with the Gauss-Newton matrix S plus the energy's second-order term.
 #include "gauss_newton.h"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 #include <utility>
-
-#include <Eigen/Eigenvalues>
 
 #include "trust_region.h"
 
@@ -46,6 +42,7 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
     if (!current.has_second_order) evaluator.add_second_order(current);
     const TrustRegionStep step = trust_region_step(current.schur + current.second_order,
                                                    current.step_rhs, scale, radius);
+    if (!(step.scaled_length > 0.0)) break;  // the trust region has collapsed
     const Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(current.weights.data(), k) + step.delta;
     evaluator.evaluate(next.data(), true, trial);
     ++result.iterations;
