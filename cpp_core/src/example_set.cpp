@@ -1,9 +1,11 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
+#include <algorithm>
 #include <numeric>
 
 #include "example_set_impl.h"
 #include "gradient_operator.h"
 #include "input_validation.h"
+#include "locality_order.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
 
@@ -11,6 +13,22 @@ namespace meshik {
 
 ExampleSet::Impl::Impl() = default;
 ExampleSet::Impl::~Impl() = default;
+
+std::vector<double> ExampleSet::Impl::to_internal(const double* positions) const {
+  std::vector<double> internal(3 * static_cast<size_t>(num_vertices));
+  for (int v = 0; v < num_vertices; ++v)
+    std::copy(positions + 3 * static_cast<size_t>(vertex_of_internal[v]),
+              positions + 3 * static_cast<size_t>(vertex_of_internal[v]) + 3, internal.begin() + 3 * v);
+  return internal;
+}
+
+std::vector<double> ExampleSet::Impl::to_user(const std::vector<double>& positions) const {
+  std::vector<double> user(positions.size());
+  for (int v = 0; v < num_vertices; ++v)
+    std::copy(positions.begin() + 3 * static_cast<size_t>(v), positions.begin() + 3 * static_cast<size_t>(v) + 3,
+              user.begin() + 3 * static_cast<size_t>(vertex_of_internal[v]));
+  return user;
+}
 
 namespace {
 
@@ -62,16 +80,26 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.num_vertices = rest.num_vertices;
   impl.num_triangles = rest.num_triangles;
   impl.num_examples = static_cast<int>(examples.size());
-  impl.rest.assign(rest.vertices, rest.vertices + 3 * static_cast<size_t>(rest.num_vertices));
-  impl.triangles.assign(rest.triangles, rest.triangles + 3 * static_cast<size_t>(rest.num_triangles));
-  impl.components = vertex_components(rest.triangles, rest.num_triangles, rest.num_vertices);
-  impl.frames = compute_triangle_frames(rest.vertices, rest.triangles, rest.num_triangles);
-  const TriangleAdjacency adjacency =
-      triangle_adjacency(rest.triangles, rest.num_triangles, rest.num_vertices);
-  impl.features =
-      compute_example_features(impl.frames, adjacency, rest.triangles, examples, progress);
-  impl.normal_matrix = eliminated_normal_matrix(impl.frames, rest.triangles, rest.num_vertices);
-  compute_centroids(impl, examples);
+  LocalityOrder order = locality_order(rest.triangles, rest.num_triangles, rest.num_vertices);
+  impl.vertex_of_internal = std::move(order.vertex_of_internal);
+  impl.internal_of_vertex = std::move(order.internal_of_vertex);
+  impl.rest = impl.to_internal(rest.vertices);
+  impl.triangles.reserve(3 * static_cast<size_t>(rest.num_triangles));
+  for (int j : order.triangle_order)
+    for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
+  std::vector<std::vector<double>> internal_examples;
+  std::vector<const double*> example_pointers;
+  for (const double* e : examples) {
+    internal_examples.push_back(impl.to_internal(e));
+    example_pointers.push_back(internal_examples.back().data());
+  }
+  const int* triangles = impl.triangles.data();
+  impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
+  const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress);
+  impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
+  compute_centroids(impl, example_pointers);
 }
 
 ExampleSet::~ExampleSet() = default;
@@ -92,7 +120,8 @@ std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace featur
   });
   // Anchors at the origin fix each component's translation; shift it afterwards.
   const std::vector<double> origin(3 * impl.blend_system->handles().size(), 0.0);
-  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data());
+  EvaluationBuffers buffers;
+  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data(), buffers);
   PoseEvaluation pose;
   evaluator.evaluate(weights, false, pose);
 
@@ -117,7 +146,7 @@ std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace featur
     if (c < 0) continue;
     for (int d = 0; d < 3; ++d) pose.vertices[3 * static_cast<size_t>(v) + d] += shift[3 * c + d];
   }
-  return std::move(pose.vertices);
+  return impl.to_user(pose.vertices);
 }
 
 }  // namespace meshik

@@ -1,5 +1,8 @@
 // What an ExampleSet holds: the rest mesh, its topology and frames, the examples' features, the
 // eliminated normal matrix K on all vertices, and the per-component centroids used by blend().
+//
+// Everything is stored in an internal vertex and triangle order chosen for cache locality
+// (locality_order.h); the public API translates vertex indices and positions at its boundary.
 #pragma once
 
 #include <memory>
@@ -20,8 +23,10 @@ struct ExampleSet::Impl {
   int num_vertices = 0;
   int num_triangles = 0;
   int num_examples = 0;
-  std::vector<double> rest;    // #V by 3
-  std::vector<int> triangles;  // #F by 3
+  std::vector<int> vertex_of_internal;  // #V: the user's index of each internal vertex
+  std::vector<int> internal_of_vertex;  // #V: the internal index of each user vertex
+  std::vector<double> rest;    // #V by 3, internal order
+  std::vector<int> triangles;  // #F by 3 internal vertex indices, internal triangle order
   VertexComponents components;
   TriangleFrames frames;
   ExampleFeatures features;
@@ -37,6 +42,11 @@ struct ExampleSet::Impl {
 
   Impl();
   ~Impl();
+
+  // positions: #V by 3 in the user's vertex order; returns them in the internal order.
+  std::vector<double> to_internal(const double* positions) const;
+  // positions: #V by 3 in the internal order; returns them in the user's vertex order.
+  std::vector<double> to_user(const std::vector<double>& positions) const;
 };
 
 }  // namespace meshik

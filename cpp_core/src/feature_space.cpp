@@ -41,10 +41,12 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
                j % kLanes);
 
   std::vector<Eigen::Vector3d> logs(m);
+  std::vector<Eigen::Matrix3d> rotations(m);
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j < m; ++j) {
       const Eigen::Matrix3d t = deformation_gradient(frames, triangles, examples[i], j);
       const PolarDecomposition polar = polar_decomposition(t);
+      rotations[j] = polar.rotation;
       logs[j] = so3_log(polar.rotation);
       const auto basis = plane_basis_of(frames, j);
       const size_t block = static_cast<size_t>(j / kLanes) * k + i;
@@ -53,7 +55,7 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
       store_rows((t - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
                  0, j % kLanes);
     }
-    if (consistent_branches) choose_consistent_log_branches(adjacency, logs);
+    if (consistent_branches) choose_consistent_log_branches(adjacency, rotations, logs);
     for (int j = 0; j < m; ++j) {
       double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
       for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[j](r);

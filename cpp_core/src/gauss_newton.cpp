@@ -2,12 +2,8 @@
 // model with the Gauss-Newton matrix S plus the energy's second-order term.
 #include "gauss_newton.h"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 #include <utility>
-
-#include <Eigen/Eigenvalues>
 
 #include "trust_region.h"
 
@@ -18,12 +14,6 @@ namespace {
 // Energy per triangle below which a decrease is rounding noise (the energy is dimensionless:
 // squared differences of deformation gradients, O(1) per triangle).
 constexpr double kNoiseEnergyPerTriangle = 1e-20;
-
-// sqrt(diag S), floored at a small fraction of the largest entry: the trust region's scaling.
-Eigen::VectorXd step_scale(const Eigen::MatrixXd& schur) {
-  const double largest = std::max(schur.diagonal().maxCoeff(), 1e-300);
-  return schur.diagonal().cwiseMax(1e-12 * largest).cwiseSqrt();
-}
 
 }  // namespace
 
@@ -41,7 +31,7 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
   result.energies.push_back(current.energy);
   double radius = -1.0;  // set from the first Gauss-Newton step
   while (k > 0) {
-    const Eigen::VectorXd scale = step_scale(current.schur);
+    const Eigen::VectorXd scale = trust_region_scale(current.schur);
     const GaussNewtonModel gauss_newton = gauss_newton_model(current.schur, current.step_rhs, scale);
     if (!(gauss_newton.decrease > options.tolerance * current.energy + noise)) {
       result.converged = true;
@@ -49,8 +39,10 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
     }
     if (result.iterations == options.max_iterations) break;
     if (radius < 0.0) radius = gauss_newton.scaled_length;
+    if (!current.has_second_order) evaluator.add_second_order(current);
     const TrustRegionStep step = trust_region_step(current.schur + current.second_order,
                                                    current.step_rhs, scale, radius);
+    if (!(step.scaled_length > 0.0)) break;  // the trust region has collapsed
     const Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(current.weights.data(), k) + step.delta;
     evaluator.evaluate(next.data(), true, trial);
     ++result.iterations;

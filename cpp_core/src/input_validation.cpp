@@ -66,8 +66,9 @@ void validate_examples(const std::vector<const double*>& examples, int num_verti
 }
 
 void validate_handles(const std::vector<int>& handles, int num_vertices,
-                      const VertexComponents& components) {
+                      const VertexComponents& components, const std::vector<int>& internal_of_vertex) {
   if (handles.empty()) throw InputError("no handles: at least one vertex must be constrained");
+  auto component_of = [&](int v) { return components.component_of_vertex[internal_of_vertex[v]]; };
   std::vector<int> handle_of_vertex(num_vertices, -1);
   std::vector<char> anchored(components.count, 0);
   for (size_t h = 0; h < handles.size(); ++h) {
@@ -78,10 +79,10 @@ void validate_handles(const std::vector<int>& handles, int num_vertices,
     if (handle_of_vertex[v] >= 0)
       throw InputError(name + " repeats handle " + std::to_string(handle_of_vertex[v]));
     handle_of_vertex[v] = static_cast<int>(h);
-    if (components.component_of_vertex[v] >= 0) anchored[components.component_of_vertex[v]] = 1;
+    if (component_of(v) >= 0) anchored[component_of(v)] = 1;
   }
   for (int v = 0; v < num_vertices; ++v) {
-    const int c = components.component_of_vertex[v];
+    const int c = component_of(v);
     if (c >= 0 && !anchored[c]) {
       int size = 0;
       for (int u : components.component_of_vertex) size += (u == c);

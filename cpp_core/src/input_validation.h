@@ -16,9 +16,10 @@ void validate_rest_mesh(const MeshView& rest);
 void validate_examples(const std::vector<const double*>& examples, int num_vertices);
 
 // handles: #H distinct vertex indices in [0, num_vertices), at least one, and at least one in
-// every connected component of the triangles.
+// every connected component of the triangles. components: over internal vertex indices, which
+// internal_of_vertex (#V) gives for the user's (messages name the user's indices).
 void validate_handles(const std::vector<int>& handles, int num_vertices,
-                      const VertexComponents& components);
+                      const VertexComponents& components, const std::vector<int>& internal_of_vertex);
 
 // Options of the solver: finite non-negative regularization and tolerance, max_iterations >= 0.
 void validate_options(const SolverOptions& options);

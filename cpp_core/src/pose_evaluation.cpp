@@ -109,18 +109,21 @@ void schur_products(const double* before, const double* after, int num_unknowns,
 }  // namespace
 
 PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system,
-                             FeatureSpace space, double regularization, const double* targets)
+                             FeatureSpace space, double regularization, const double* targets,
+                             EvaluationBuffers& buffers)
     : set_(set),
       system_(system),
       space_(space),
       regularization_(regularization),
       targets_(targets),
-      coupling_(3 * static_cast<size_t>(system.num_unknowns())),
+      coupling_(buffers.coupling),
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
       scatter_rows_(6 * (set.num_examples + 1)),
-      blended_(6 * L * static_cast<size_t>(set.features.num_batches)),
+      blended_(buffers.blended),
+      rhs_(buffers.rhs),
+      rhs_before_solve_(buffers.rhs_before_solve),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
       curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L) {
@@ -128,6 +131,8 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   const size_t rhs_size = static_cast<size_t>(system.num_unknowns()) * 3 * (k + 1);
   rhs_.resize(rhs_size);
   rhs_before_solve_.resize(rhs_size);
+  coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
+  blended_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
@@ -210,27 +215,41 @@ void PoseEvaluator::gather_vertices(int columns, double* vertices) const {
   }
 }
 
-double PoseEvaluator::residual_pass(const double* weights, const double* vertices, bool curvature) {
-  std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
+double PoseEvaluator::residual_energy(const double* vertices) const {
   double energy = 0.0;
+  double residual[6 * L];
+  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+    const int first = batch * L;
+    energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
+                             set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
+                             blended_.data() + static_cast<size_t>(batch) * 6 * L,
+                             std::min(L, set_.num_triangles - first), residual);
+  }
+  return energy;
+}
+
+void PoseEvaluator::add_second_order(PoseEvaluation& at) {
+  const int k = set_.num_examples;
+  at.second_order.setZero(k, k);
+  at.has_second_order = true;
+  if (space_ == FeatureSpace::kLinear) return;
+  std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
   double residual[6 * L];
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
     const int first = batch * L;
-    const int lanes = std::min(L, set_.num_triangles - first);
-    const double* blended = blended_.data() + static_cast<size_t>(batch) * 6 * L;
-    if (curvature) {
-      blend_batch(set_.features, space_, weights, batch, out);
-      blended = out;
-    }
-    energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
-                             set_.frames.gradient.data() + 6 * static_cast<size_t>(first), blended,
-                             lanes, residual);
-    if (curvature)
-      accumulate_residual_curvature(set_.features, weights, batch, out, residual,
-                                    curvature_lanes_.data());
+    blend_batch(set_.features, space_, at.weights.data(), batch, out);
+    batch_residual(at.vertices.data(), set_.triangles.data() + 3 * static_cast<size_t>(first),
+                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first), out,
+                   std::min(L, set_.num_triangles - first), residual);
+    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out, residual,
+                                  curvature_lanes_.data());
   }
-  return energy;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (int l = 0; l < L; ++l)
+        at.second_order(a, b) -= 0.5 * (curvature_lanes_[(a * k + b) * L + l] +
+                                        curvature_lanes_[(b * k + a) * L + l]);
 }
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
@@ -247,14 +266,8 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
   gather_vertices(columns, out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
-  const bool curvature = with_jacobian && space_ == FeatureSpace::kNonlinear;
-  out.energy = residual_pass(weights, out.vertices.data(), curvature) + regularization_ * w.squaredNorm();
-  out.second_order.setZero(k, k);
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int l = 0; l < L; ++l)
-        out.second_order(a, b) -= 0.5 * (curvature_lanes_[(a * k + b) * L + l] +
-                                         curvature_lanes_[(b * k + a) * L + l]);
+  out.energy = residual_energy(out.vertices.data()) + regularization_ * w.squaredNorm();
+  out.has_second_order = false;
   if (!with_jacobian) return;
 
   Eigen::MatrixXd htz = Eigen::MatrixXd::Zero(k, k);

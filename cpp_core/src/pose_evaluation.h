@@ -23,19 +23,35 @@ struct PoseEvaluation {
   Eigen::MatrixXd schur;         // #E by #E: S (only with the Jacobian)
   Eigen::VectorXd step_rhs;      // #E: g = -(1/2) d phi / dw (only with the Jacobian)
   // #E by #E: -sum_j <R_j, d2F_j/dw dw>, so that S + second_order is half the Hessian of phi
-  // (zero in the linear space and without the Jacobian).
+  // (zero in the linear space); only once PoseEvaluator::add_second_order has run.
   Eigen::MatrixXd second_order;
+  bool has_second_order = false;
+};
+
+// The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
+// allocates nor page-faults them again.
+struct EvaluationBuffers {
+  std::vector<double> coupling;          // #unknowns by 3: K_fh x_h
+  std::vector<double> blended;           // #batches by 6 by kLanes: F_j(w)
+  std::vector<double> rhs;               // #unknowns by 3 (#E + 1)
+  std::vector<double> rhs_before_solve;  // copy of rhs (H = G'^T J is needed after the solve)
 };
 
 class PoseEvaluator {
  public:
   // set / system: the example set and the factored system of its handles (both outlive this);
-  // targets: #H by 3 handle positions; regularization: kappa >= 0.
+  // targets: #H by 3 handle positions; regularization: kappa >= 0; buffers: storage to use (may be
+  // shared by successive evaluators, not by simultaneous ones).
   PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system, FeatureSpace space,
-                double regularization, const double* targets);
+                double regularization, const double* targets, EvaluationBuffers& buffers);
+
 
   // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
+
+  // Fills at.second_order for a pose this evaluator evaluated (one more pass over the triangles,
+  // re-blending them; only worth it when a step is taken from `at`).
+  void add_second_order(PoseEvaluation& at);
 
  private:
   // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
@@ -43,23 +59,22 @@ class PoseEvaluator {
   void assemble(const double* weights, int columns, bool with_jacobian);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(int columns, double* vertices) const;
-  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3); with curvature, also accumulates
-  // curvature_lanes_ (re-blending each batch).
-  double residual_pass(const double* weights, const double* vertices, bool curvature);
+  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble().
+  double residual_energy(const double* vertices) const;
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
   FeatureSpace space_;
   double regularization_;
   const double* targets_;
-  std::vector<double> coupling_;         // #unknowns by 3: K_fh x_h
+  std::vector<double>& coupling_;        // buffers' coupling
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
   std::vector<double> scatter_rows_;     // 2 by 3 (#E + 1): one triangle's blocks, by column
-  std::vector<double> blended_;          // #batches by 6 by kLanes: F_j(w)
-  std::vector<double> rhs_;              // #unknowns by 3 (#E + 1)
-  std::vector<double> rhs_before_solve_; // copy of rhs_ (H = G'^T J is needed after the solve)
+  std::vector<double>& blended_;         // buffers' blended
+  std::vector<double>& rhs_;             // buffers' rhs
+  std::vector<double>& rhs_before_solve_;
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
   std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane

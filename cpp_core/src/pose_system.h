@@ -35,6 +35,12 @@ class PoseSystem {
   // handle positions targets (#H by 3, row-major).
   void handle_coupling(const double* targets, double* out) const;
 
+  // K_fh by handle h: rows coupling_row()[s] and values coupling_value()[s] of the unknowns
+  // coupled to handle h, for s in [coupling_start()[h], coupling_start()[h + 1]).
+  const std::vector<int>& coupling_start() const { return coupling_start_; }
+  const std::vector<int>& coupling_row() const { return coupling_row_; }
+  const std::vector<double>& coupling_value() const { return coupling_value_; }
+
   // Solves K' X = B in place; b: #unknowns by nrhs row-major.
   void solve(double* b, int nrhs) const { factor_.solve(b, nrhs); }
 

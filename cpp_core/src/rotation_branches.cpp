@@ -1,9 +1,12 @@
-// Breadth-first choice of rotation-log branches over the triangle adjacency.
+// Choice of rotation-log branches along a minimum spanning tree of the triangle adjacency.
 #include "rotation_branches.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <functional>
+#include <queue>
+#include <tuple>
+#include <vector>
 
 namespace meshik {
 
@@ -33,31 +36,37 @@ Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
 }
 
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                    const std::vector<Eigen::Matrix3d>& rotations,
                                     std::vector<Eigen::Vector3d>& logs) {
   const int m = static_cast<int>(logs.size());
+  // Prim's algorithm: grow a tree from the least rotated triangle of each component, always
+  // across the edge whose two rotations are closest (3 - trace(R_a^T R_b), monotone in the angle
+  // between them), so that a branch is only ever copied between nearly equal rotations.
+  using Edge = std::tuple<double, int, int>;  // (distance, from, to)
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
+  std::vector<char> in_tree(m, 0);
   std::vector<int> order(m);
-  std::iota(order.begin(), order.end(), 0);
+  for (int j = 0; j < m; ++j) order[j] = j;
   std::vector<double> angle(m);
   for (int j = 0; j < m; ++j) angle[j] = logs[j].norm();
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
-
-  std::vector<char> visited(m, 0);
-  std::vector<int> queue;
-  queue.reserve(m);
+  auto add_edges_of = [&](int from) {
+    in_tree[from] = 1;
+    for (int s = adjacency.start[from]; s < adjacency.start[from + 1]; ++s) {
+      const int to = adjacency.neighbour[s];
+      if (!in_tree[to])
+        frontier.emplace(3.0 - (rotations[from].transpose() * rotations[to]).trace(), from, to);
+    }
+  };
   for (int root : order) {
-    if (visited[root]) continue;
-    visited[root] = 1;
-    queue.clear();
-    queue.push_back(root);
-    for (size_t head = 0; head < queue.size(); ++head) {
-      const int from = queue[head];
-      for (int s = adjacency.start[from]; s < adjacency.start[from + 1]; ++s) {
-        const int to = adjacency.neighbour[s];
-        if (visited[to]) continue;
-        visited[to] = 1;
-        logs[to] = closest_log_branch(logs[to], logs[from]);
-        queue.push_back(to);
-      }
+    if (in_tree[root]) continue;
+    add_edges_of(root);
+    while (!frontier.empty()) {
+      const auto [distance, from, to] = frontier.top();
+      frontier.pop();
+      if (in_tree[to]) continue;
+      logs[to] = closest_log_branch(logs[to], logs[from]);
+      add_edges_of(to);
     }
   }
 }

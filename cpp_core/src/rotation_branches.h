@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/StdVector>
 
 #include "mesh_topology.h"
 
@@ -20,11 +21,14 @@ namespace meshik {
 Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
                                    const Eigen::Vector3d& reference);
 
-// logs: #F principal rotation logs, one per triangle, replaced by consistent branches.
-// Walks the edge adjacency breadth-first from the least rotated unvisited triangle of each
-// component (which keeps its principal log) and gives every newly reached triangle the branch
-// closest to the log of the triangle it was reached from.
+// rotations: #F rotation matrices, one per triangle; logs: their #F principal logs, replaced by
+// consistent branches. Grows a minimum spanning tree of the edge adjacency (edge length: the
+// angle between the two triangles' rotations) from the least rotated triangle of each component,
+// which keeps its principal log, and gives every triangle added the branch closest to the log of
+// the tree neighbour it was reached from, so branches are only copied between nearly equal
+// rotations.
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                    const std::vector<Eigen::Matrix3d>& rotations,
                                     std::vector<Eigen::Vector3d>& logs);
 
 }  // namespace meshik

@@ -35,9 +35,9 @@ Eigen::Vector3d so3_log(const Eigen::Matrix3d& r) {
   if (cos_theta > -0.5) {
     // theta < 2 pi / 3: the antisymmetric part determines the axis well.
     const double t2 = theta * theta;
+    // theta / sin(theta) has no cancellation; only theta -> 0 needs the series.
     const double theta_over_sin =
-        t2 < 1e-2 ? 1.0 + t2 / 6.0 * (1.0 + 7.0 * t2 / 60.0 * (1.0 + 31.0 * t2 / 294.0))
-                  : theta / sin_theta;
+        t2 < 1e-6 ? 1.0 + t2 / 6.0 * (1.0 + 7.0 * t2 / 60.0) : theta / sin_theta;
     return theta_over_sin * v;
   }
   // Near pi: (R + R^T)/2 = cos(theta) I + (1 - cos(theta)) axis axis^T; read the axis from the

@@ -1,18 +1,57 @@
 // Solver: validates a handle set, factors its system once, and poses the mesh per target set.
+#include <mutex>
+
 #include "example_set_impl.h"
 #include "gauss_newton.h"
 #include "input_validation.h"
+#include "linear_start.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
 
 namespace meshik {
+
+using BuffersPool = std::vector<std::unique_ptr<EvaluationBuffers>>;
 
 struct Solver::Impl {
   std::shared_ptr<const ExampleSet> examples;
   std::vector<int> handles;
   SolverOptions options;
   std::unique_ptr<PoseSystem> system;
+  std::unique_ptr<LinearStart> linear_start;
+  // Evaluation buffers of finished solves, reused by the next ones (one per concurrent solve).
+  std::mutex pool_mutex;
+  BuffersPool pool;
 };
+
+namespace {
+
+// Takes buffers from a pool (or new ones) and gives them back when destroyed.
+class BuffersLease {
+ public:
+  BuffersLease(std::mutex& mutex, BuffersPool& pool) : mutex_(mutex), pool_(pool) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pool_.empty()) {
+      buffers_ = std::make_unique<EvaluationBuffers>();
+    } else {
+      buffers_ = std::move(pool_.back());
+      pool_.pop_back();
+    }
+  }
+  ~BuffersLease() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pool_.push_back(std::move(buffers_));
+  }
+  BuffersLease(const BuffersLease&) = delete;
+  BuffersLease& operator=(const BuffersLease&) = delete;
+  EvaluationBuffers& buffers() { return *buffers_; }
+
+ private:
+  std::mutex& mutex_;
+  BuffersPool& pool_;
+  std::unique_ptr<EvaluationBuffers> buffers_;
+};
+
+}  // namespace
 
 Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int>& handles,
                const SolverOptions& options, const ProgressCallback& progress)
@@ -20,11 +59,14 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   if (!examples) throw InputError("no example set given to the solver");
   validate_options(options);
   const ExampleSet::Impl& set = examples->impl();
-  validate_handles(handles, set.num_vertices, set.components);
+  validate_handles(handles, set.num_vertices, set.components, set.internal_of_vertex);
+  std::vector<int> internal_handles;
+  for (int v : handles) internal_handles.push_back(set.internal_of_vertex[v]);
   impl_->examples = std::move(examples);
   impl_->handles = handles;
   impl_->options = options;
-  impl_->system = std::make_unique<PoseSystem>(set, handles, progress);
+  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress);
+  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system);
 }
 
 Solver::~Solver() = default;
@@ -36,9 +78,19 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   const ExampleSet::Impl& set = impl_->examples->impl();
   validate_targets(targets, impl_->handles);
   if (initial_weights != nullptr) validate_finite(initial_weights, set.num_examples, "initial weight");
-  PoseEvaluator evaluator(set, *impl_->system, impl_->options.feature_space,
-                          impl_->options.weight_regularization, targets);
-  return gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, impl_->options, progress);
+  const SolverOptions& options = impl_->options;
+  BuffersLease lease(impl_->pool_mutex, impl_->pool);
+  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization,
+                          targets, lease.buffers());
+  Eigen::VectorXd start;
+  if (initial_weights == nullptr) {
+    start = impl_->linear_start->weights(targets, options.weight_regularization);
+    initial_weights = start.data();
+  }
+  SolveResult result =
+      gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, options, progress);
+  result.vertices = set.to_user(result.vertices);
+  return result;
 }
 
 const ExampleSet& Solver::examples() const { return *impl_->examples; }

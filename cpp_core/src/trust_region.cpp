@@ -39,6 +39,11 @@ double shifted_length(const ScaledModel& m, double mu) {
 
 }  // namespace
 
+Eigen::VectorXd trust_region_scale(const Eigen::MatrixXd& s) {
+  const double largest = std::max(s.diagonal().maxCoeff(), 1e-300);
+  return s.diagonal().cwiseMax(1e-12 * largest).cwiseSqrt();
+}
+
 TrustRegionStep trust_region_step(const Eigen::MatrixXd& h, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& scale, double radius) {
   const ScaledModel m = scaled_model(h, g, scale);
@@ -81,13 +86,14 @@ GaussNewtonModel gauss_newton_model(const Eigen::MatrixXd& s, const Eigen::Vecto
   const ScaledModel m = scaled_model(s, g, scale);
   const double cutoff = 1e-12 * std::max(m.eigenvalues.cwiseAbs().maxCoeff(), 1e-300);
   GaussNewtonModel model;
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(m.eigenvalues.size());
   for (int i = 0; i < m.eigenvalues.size(); ++i)
     if (m.eigenvalues(i) > cutoff) {
-      const double z = m.gradient(i) / m.eigenvalues(i);
-      model.scaled_length += z * z;
-      model.decrease += m.gradient(i) * z;
+      z(i) = m.gradient(i) / m.eigenvalues(i);
+      model.decrease += m.gradient(i) * z(i);
     }
-  model.scaled_length = std::sqrt(model.scaled_length);
+  model.scaled_length = z.norm();
+  model.delta = (m.eigenvectors * z).cwiseQuotient(scale);
   return model;
 }
 

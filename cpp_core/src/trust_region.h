@@ -15,6 +15,10 @@ struct TrustRegionStep {
   bool on_boundary = false;   // the radius restricted the step
 };
 
+// The scaling D of the trust region for Gauss-Newton matrix s (#E by #E): sqrt(diag s), floored
+// at a small fraction of its largest entry.
+Eigen::VectorXd trust_region_scale(const Eigen::MatrixXd& s);
+
 // h: #E by #E model matrix; g: #E; scale: #E positive entries of the diagonal D; radius >= 0.
 TrustRegionStep trust_region_step(const Eigen::MatrixXd& h, const Eigen::VectorXd& g,
                                   const Eigen::VectorXd& scale, double radius);
@@ -23,6 +27,7 @@ TrustRegionStep trust_region_step(const Eigen::MatrixXd& h, const Eigen::VectorX
 // left out): its scaled length |D delta| (the first radius) and its model decrease g.delta (a
 // measure of stationarity that does not depend on the radius).
 struct GaussNewtonModel {
+  Eigen::VectorXd delta;  // the step
   double scaled_length = 0.0;
   double decrease = 0.0;
 };

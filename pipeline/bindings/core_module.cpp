@@ -95,6 +95,7 @@ NumpyArray to_numpy(std::vector<double>&& values, std::initializer_list<size_t> 
   return NumpyArray(owned->data(), shape.size(), shape.begin(), owner);
 }
 
+// "nonlinear" or "linear" as a FeatureSpace; InputError otherwise.
 meshik::FeatureSpace parse_feature_space(const std::string& name) {
   if (name == "nonlinear") return meshik::FeatureSpace::kNonlinear;
   if (name == "linear") return meshik::FeatureSpace::kLinear;
@@ -137,6 +138,8 @@ class PythonProgress {
   std::exception_ptr error_;
 };
 
+// The Python objects: an ExampleSet shared with the solvers made from it, a solve's results as
+// numpy arrays, and a solver with the example set it keeps alive.
 struct PyExampleSet {
   std::shared_ptr<const meshik::ExampleSet> core;
 };
@@ -155,6 +158,8 @@ struct PySolver {
   std::unique_ptr<meshik::Solver> solver;
 };
 
+// ExampleSet from rest_vertices (n, 3), faces (m, 3) and examples ((k, n, 3) or k arrays (n, 3)),
+// with the GIL released while the core validates and precomputes.
 PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object& faces,
                               const nb::object& examples, const nb::object& progress) {
   std::vector<double> rest = point_rows(rest_vertices, "rest_vertices", -1, "(n, 3)");
@@ -189,6 +194,7 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
   })};
 }
 
+// Solver over `set` for handles (h,) with the given options (GIL released while factoring).
 PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::object& handles,
                      const std::string& feature_space, double weight_regularization,
                      int max_iterations, double tolerance, const nb::object& progress) {
@@ -214,6 +220,7 @@ std::vector<double> weight_values(const nb::handle& value, const char* name, int
   return float_values(array, name);
 }
 
+// set.blend(weights (k,)) as an (n, 3) array.
 NumpyArray blend(const meshik::ExampleSet& set, const nb::object& weights,
                  meshik::FeatureSpace space) {
   const std::vector<double> w = weight_values(weights, "weights", set.num_examples());
@@ -225,6 +232,7 @@ NumpyArray blend(const meshik::ExampleSet& set, const nb::object& weights,
   return to_numpy(std::move(pose), {static_cast<size_t>(set.num_vertices()), 3});
 }
 
+// self.solve(targets (h, 3), initial_weights (k,) or None) with the GIL released.
 PySolveResult solve(const PySolver& self, const nb::object& targets,
                     const nb::object& initial_weights, const nb::object& progress) {
   const meshik::Solver& solver = *self.solver;

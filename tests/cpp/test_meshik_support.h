@@ -12,6 +12,8 @@
 
 #include "../../bench/obj_reader.h"
 #include "../../bench/paper_handles.h"
+#include "example_set_impl.h"
+#include "feature_space.h"
 #include "meshik/meshik.h"
 
 namespace meshik_test {
@@ -148,6 +150,23 @@ inline int count_flipped_triangles(const std::vector<double>& vertices,
   int flipped = 0;
   for (size_t j = 0; j < a.size(); ++j) flipped += a[j].dot(b[j]) < 0.0;
   return flipped;
+}
+
+// Replaces the features of `set` (built from `examples`, #E arrays of #V by 3 in the user's
+// vertex order) by ones that keep the principal rotation logs: the blend without the choice of
+// consistent branches, for comparison.
+inline void use_principal_logs(meshik::ExampleSet& set, const std::vector<const double*>& examples) {
+  auto& impl = const_cast<meshik::ExampleSet::Impl&>(set.impl());
+  std::vector<std::vector<double>> internal;
+  std::vector<const double*> pointers;
+  for (const double* e : examples) {
+    internal.push_back(impl.to_internal(e));
+    pointers.push_back(internal.back().data());
+  }
+  const meshik::TriangleAdjacency adjacency =
+      meshik::triangle_adjacency(impl.triangles.data(), impl.num_triangles, impl.num_vertices);
+  impl.features = meshik::compute_example_features(impl.frames, adjacency, impl.triangles.data(),
+                                                   pointers, {}, false);
 }
 
 }  // namespace meshik_test

@@ -119,3 +119,17 @@ def test_progress_is_reported_and_can_cancel_or_raise(tube):
         raise KeyError("from the callback")
     with pytest.raises(KeyError, match="from the callback"):
         solver.solve(targets, progress=failing)
+
+
+def test_concurrent_solves_share_one_solver(tube):
+    """solve() releases the GIL and is safe to call from several threads at once."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    rest, faces, examples = tube
+    solver = meshik.Solver(rest, faces, examples, HANDLES)
+    targets = [examples[i % 3][HANDLES] * (1.0 + 0.05 * i) for i in range(8)]
+    alone = [solver.solve(t).vertices for t in targets]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        together = list(pool.map(lambda t: solver.solve(t).vertices, targets))
+    for a, b in zip(alone, together):
+        np.testing.assert_array_equal(a, b)

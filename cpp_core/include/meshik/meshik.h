@@ -106,8 +106,9 @@ class Solver {
  public:
   // examples: a shared, validated example set (kept alive by the solver)
   // handles:  #H distinct vertex indices constrained by solve()
-  // Factors G'^T G' once; throws InputError (no handle, handle out of range or repeated,
-  // a connected component without a handle).
+  // Factors G'^T G' once (and solves once for what the linear feature space needs per handle
+  // set); throws InputError (no handle, handle out of range or repeated, a connected component
+  // without a handle). solve() may be called from several threads at once.
   Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int>& handles,
          const SolverOptions& options = {}, const ProgressCallback& progress = {});
   ~Solver();
@@ -115,7 +116,10 @@ class Solver {
   Solver& operator=(Solver&&) noexcept;
 
   // targets:         #H by 3 row-major target positions, in the order of the handles
-  // initial_weights: #E starting weights (warm start), or nullptr for the rest pose (w = 0)
+  // initial_weights: #E starting weights (warm start, e.g. the previous frame's), or nullptr to
+  //                  start from the weights that are optimal in the linear feature space (the
+  //                  linear space's solution; for the nonlinear space a better start than the
+  //                  rest pose w = 0, which may lie in the basin of a worse local minimum)
   // Never refactors: only the right-hand side changes with the targets.
   SolveResult solve(const double* targets, const double* initial_weights = nullptr,
                     const ProgressCallback& progress = {}) const;

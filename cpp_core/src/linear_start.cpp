@@ -1,0 +1,69 @@
+// One linear-space evaluation per handle set, then the optimal linear weights of any targets.
+// GCC 12 reports a false -Wmaybe-uninitialized inside Eigen's AVX-512 reductions (built with
+// -march=native); the values it names are always written first.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include "linear_start.h"
+
+#include <vector>
+
+#include "feature_space.h"
+#include "pose_evaluation.h"
+#include "trust_region.h"
+
+namespace meshik {
+
+LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) {
+  const int k = set.num_examples;
+  const int num_handles = static_cast<int>(system.handles().size());
+  schur_ = Eigen::MatrixXd::Zero(k, k);
+  rest_gradient_ = Eigen::VectorXd::Zero(k);
+  affine_ = Eigen::MatrixXd::Zero(3 * num_handles, k);
+  if (k == 0) return;
+
+  // All handles at the origin: the evaluation gives S, g_U, and Z = K'^{-1} G'^T L in its
+  // right-hand sides (per unknown and coordinate: x0 then the #E columns of Z).
+  const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
+  EvaluationBuffers buffers;
+  PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers);
+  PoseEvaluation at_rest;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
+  evaluator.evaluate(zero.data(), true, at_rest);
+  schur_ = at_rest.schur;
+  rest_gradient_ = at_rest.step_rhs;
+
+  // -Z^T K_fh x_h: only the rows of Z coupled to a handle.
+  const int columns = k + 1;
+  const double* solved = buffers.rhs.data();
+  for (int h = 0; h < num_handles; ++h)
+    for (int s = system.coupling_start()[h]; s < system.coupling_start()[h + 1]; ++s) {
+      const size_t row = static_cast<size_t>(system.coupling_row()[s]) * 3;
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < k; ++i)
+          affine_(3 * h + c, i) -= system.coupling_value()[s] * solved[(row + c) * columns + 1 + i];
+    }
+  // + L^T (handles' part of Q): handle h at corner q of triangle j adds x_h . (L_ij g_q).
+  const ExampleFeatures& features = set.features;
+  for (int j : system.handle_triangles()) {
+    const double* g = set.frames.gradient.data() + 6 * static_cast<size_t>(j);
+    for (int q = 0; q < 3; ++q) {
+      const int h = system.handle_of_vertex()[set.triangles[3 * j + q]];
+      if (h < 0) continue;
+      for (int i = 0; i < k; ++i) {
+        const double* l = features.linear.data() + (static_cast<size_t>(j / kLanes) * k + i) * 6 * kLanes + j % kLanes;
+        for (int c = 0; c < 3; ++c)
+          affine_(3 * h + c, i) += l[(2 * c) * kLanes] * g[2 * q] + l[(2 * c + 1) * kLanes] * g[2 * q + 1];
+      }
+    }
+  }
+}
+
+Eigen::VectorXd LinearStart::weights(const double* targets, double regularization) const {
+  if (schur_.rows() == 0) return Eigen::VectorXd();
+  const Eigen::VectorXd g =
+      rest_gradient_ + affine_.transpose() * Eigen::Map<const Eigen::VectorXd>(targets, affine_.rows());
+  Eigen::MatrixXd s = schur_;
+  s.diagonal().array() += regularization;
+  return gauss_newton_model(s, g, trust_region_scale(s)).delta;
+}
+
+}  // namespace meshik

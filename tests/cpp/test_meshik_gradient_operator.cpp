@@ -1,0 +1,139 @@
+// The deformation-gradient operator G with the fourth vertices kept, and its exact elimination:
+// T U equals the in-plane gradient of the corners, the eliminated matrix is the Schur complement
+// of G^T G, and posing with the fourth vertices kept or eliminated gives the same vertices and
+// the same energy.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include <Eigen/Dense>
+
+#include "gradient_operator.h"
+#include "test_meshik_support.h"
+#include "triangle_frames.h"
+
+namespace {
+
+using meshik_test::ExampleMeshes;
+
+// G (3 #F by #V + #F) as a dense matrix.
+Eigen::MatrixXd dense_kept_operator(const ExampleMeshes& meshes, const meshik::TriangleFrames& frames) {
+  const int n = meshes.num_vertices(), m = meshes.num_triangles();
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(3 * m, n + m);
+  for (const meshik::MatrixEntry& e : meshik::kept_gradient_operator(frames, meshes.triangles.data(), n))
+    g(e.row, e.col) += e.value;
+  return g;
+}
+
+class GradientOperator : public ::testing::Test {
+ protected:
+  ExampleMeshes meshes_ = meshik_test::make_tube_examples();
+  meshik::TriangleFrames frames_ =
+      meshik::compute_triangle_frames(meshes_.rest.data(), meshes_.triangles.data(), meshes_.num_triangles());
+};
+
+TEST_F(GradientOperator, KeptOperatorGivesTheDeformationGradients) {
+  const Eigen::MatrixXd g = dense_kept_operator(meshes_, frames_);
+  const int n = meshes_.num_vertices(), m = meshes_.num_triangles();
+  const std::vector<double>& pose = meshes_.examples[0];
+  for (int c = 0; c < 3; ++c) {
+    // Column c of the pose, followed by each triangle's deformed fourth vertex.
+    Eigen::VectorXd x(n + m);
+    for (int v = 0; v < n; ++v) x(v) = pose[3 * v + c];
+    for (int j = 0; j < m; ++j) {
+      const int* t = &meshes_.triangles[3 * j];
+      const Eigen::Vector3d a = Eigen::Vector3d::Map(&pose[3 * t[0]]);
+      x(n + j) = (a + meshik::fourth_vertex_offset(Eigen::Vector3d::Map(&pose[3 * t[1]]) - a,
+                                                   Eigen::Vector3d::Map(&pose[3 * t[2]]) - a))(c);
+    }
+    const Eigen::VectorXd gradients = g * x;
+    for (int j = 0; j < m; ++j) {
+      const Eigen::Matrix3d t = meshik::deformation_gradient(frames_, meshes_.triangles.data(), pose.data(), j);
+      for (int r = 0; r < 3; ++r) EXPECT_NEAR(gradients(3 * j + r), t(c, r), 1e-12);
+    }
+  }
+}
+
+TEST_F(GradientOperator, TimesThePlaneBasisItIsTheInPlaneGradientOfTheCorners) {
+  std::mt19937 random(5);
+  std::normal_distribution<double> normal;
+  std::vector<double> pose(meshes_.rest.size());
+  for (double& p : pose) p = normal(random);
+  for (int j = 0; j < meshes_.num_triangles(); ++j) {
+    const Eigen::Matrix<double, 3, 2> projected =
+        meshik::deformation_gradient(frames_, meshes_.triangles.data(), pose.data(), j) *
+        meshik::plane_basis_of(frames_, j);
+    Eigen::Matrix<double, 3, 2> in_plane = Eigen::Matrix<double, 3, 2>::Zero();
+    for (int q = 0; q < 3; ++q)
+      in_plane += Eigen::Vector3d::Map(&pose[3 * meshes_.triangles[3 * j + q]]) *
+                  Eigen::RowVector2d::Map(&frames_.gradient[6 * j + 2 * q]);
+    EXPECT_LT((projected - in_plane).norm(), 1e-11 * projected.norm()) << "triangle " << j;
+  }
+}
+
+TEST_F(GradientOperator, EliminatedMatrixIsTheSchurComplementOfTheFourthVertices) {
+  const int n = meshes_.num_vertices(), m = meshes_.num_triangles();
+  const Eigen::MatrixXd g = dense_kept_operator(meshes_, frames_);
+  const Eigen::MatrixXd a = g.transpose() * g;
+  // The fourth-vertex block is diagonal: eliminating it is exact and cheap.
+  const Eigen::MatrixXd fourth = a.bottomRightCorner(m, m);
+  EXPECT_LT((fourth - Eigen::MatrixXd(fourth.diagonal().asDiagonal())).norm(), 1e-12 * fourth.norm());
+  const Eigen::MatrixXd schur = a.topLeftCorner(n, n) - a.topRightCorner(n, m) *
+                                                            fourth.diagonal().cwiseInverse().asDiagonal() *
+                                                            a.bottomLeftCorner(m, n);
+  const meshik::CscMatrix k = meshik::eliminated_normal_matrix(frames_, meshes_.triangles.data(), n);
+  Eigen::MatrixXd dense_k = Eigen::MatrixXd::Zero(n, n);
+  for (int col = 0; col < n; ++col)
+    for (int s = k.col_start[col]; s < k.col_start[col + 1]; ++s) dense_k(k.row_index[s], col) = k.values[s];
+  EXPECT_LT((dense_k - schur).cwiseAbs().maxCoeff(), 1e-10 * schur.cwiseAbs().maxCoeff());
+}
+
+TEST_F(GradientOperator, KeptAndEliminatedFormsGiveTheSamePoseAndEnergy) {
+  const int n = meshes_.num_vertices(), m = meshes_.num_triangles();
+  const std::vector<int> handles = meshik_test::farthest_point_handles(meshes_.rest, 6);
+  const std::vector<double> weights = {0.3, -0.2, 0.6};
+  // Targets: the handles of a pose that is not the blend, so the energy is not zero.
+  std::vector<double> targets = meshik_test::gather_rows(meshes_.examples[0], handles);
+  for (double& t : targets) t *= 1.2;
+
+  // Eliminated: the solver at fixed weights (linear space: T_j(w) = I + sum_i w_i (T_ij - I)).
+  const auto set = std::make_shared<meshik::ExampleSet>(meshes_.view(), meshes_.example_pointers());
+  meshik::SolverOptions options;
+  options.feature_space = meshik::FeatureSpace::kLinear;
+  options.max_iterations = 0;
+  const meshik::SolveResult eliminated =
+      meshik::Solver(set, handles, options).solve(targets.data(), weights.data());
+
+  // Kept: least squares over the free vertices and all fourth vertices with the dense G.
+  const Eigen::MatrixXd g = dense_kept_operator(meshes_, frames_);
+  std::vector<int> handle_of(n, -1);
+  for (size_t h = 0; h < handles.size(); ++h) handle_of[handles[h]] = static_cast<int>(h);
+  std::vector<int> columns;
+  for (int v = 0; v < n + m; ++v)
+    if (v >= n || handle_of[v] < 0) columns.push_back(v);
+  Eigen::MatrixXd g_free(3 * m, columns.size());
+  for (size_t c = 0; c < columns.size(); ++c) g_free.col(c) = g.col(columns[c]);
+  const Eigen::LDLT<Eigen::MatrixXd> normal(g_free.transpose() * g_free);
+  double kept_energy = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd rhs(3 * m);
+    for (int j = 0; j < m; ++j) {
+      Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
+      for (size_t i = 0; i < weights.size(); ++i)
+        t += weights[i] * (meshik::deformation_gradient(frames_, meshes_.triangles.data(),
+                                                         meshes_.examples[i].data(), j) -
+                           Eigen::Matrix3d::Identity());
+      rhs.segment<3>(3 * j) = t.row(c).transpose();
+    }
+    for (size_t h = 0; h < handles.size(); ++h) rhs -= g.col(handles[h]) * targets[3 * h + c];
+    const Eigen::VectorXd z = normal.solve(g_free.transpose() * rhs);
+    kept_energy += (g_free * z - rhs).squaredNorm();
+    for (size_t col = 0; col < columns.size(); ++col)
+      if (columns[col] < n) EXPECT_NEAR(z(col), eliminated.vertices[3 * columns[col] + c], 1e-9);
+  }
+  EXPECT_NEAR(kept_energy, eliminated.residual, 1e-9 * kept_energy);
+  EXPECT_GT(kept_energy, 1e-3);
+}
+
+}  // namespace

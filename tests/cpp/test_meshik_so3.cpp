@@ -1,0 +1,177 @@
+// SO(3) maps, their derivatives, the vectorised sine/cosine, the polar decomposition and the
+// choice of rotation-log branches.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "lane_math.h"
+#include "rotation_branches.h"
+#include "so3.h"
+
+namespace {
+
+using meshik::polar_decomposition;
+using meshik::so3_exp;
+using meshik::so3_log;
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+// Rotation vectors whose angles cover 0, tiny, moderate, the Taylor threshold and the
+// neighbourhood of pi.
+std::vector<Eigen::Vector3d> test_rotation_vectors() {
+  std::mt19937 random(7);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Vector3d> vectors;
+  for (double angle : {0.0, 1e-12, 1e-8, 1e-4, 0.05, 0.0999, 0.1, 0.1001, 0.7, 1.5, 2.5, 3.0,
+                       kPi - 1e-3, kPi - 1e-6, kPi - 1e-9}) {
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d axis = Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+      vectors.push_back(angle * axis);
+    }
+  }
+  return vectors;
+}
+
+TEST(So3, ExpMatchesAngleAxisAndLogInvertsIt) {
+  for (const Eigen::Vector3d& phi : test_rotation_vectors()) {
+    const double angle = phi.norm();
+    const Eigen::Matrix3d expected =
+        angle > 0 ? Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d r = so3_exp(phi);
+    EXPECT_LT((r - expected).norm(), 1e-14) << "angle " << angle;
+    EXPECT_LT((so3_log(r) - phi).norm(), angle > kPi - 1e-5 ? 1e-7 : 1e-13) << "angle " << angle;
+  }
+}
+
+TEST(So3, LogAtExactlyPiAndBeyondPiIsPrincipal) {
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, 2, 2) / 3.0;
+  const Eigen::Vector3d at_pi = so3_log(Eigen::AngleAxisd(kPi, axis).toRotationMatrix());
+  EXPECT_NEAR(at_pi.norm(), kPi, 1e-12);
+  EXPECT_NEAR(std::abs(at_pi.normalized().dot(axis)), 1.0, 1e-12);
+  // A rotation by 4 (> pi) about axis is one by 2 pi - 4 about -axis.
+  const Eigen::Vector3d beyond = so3_log(so3_exp(4.0 * axis));
+  EXPECT_LT((beyond - (4.0 - 2.0 * kPi) * axis).norm(), 1e-13);
+}
+
+TEST(So3, LeftJacobianIsTheDerivativeOfExp) {
+  std::mt19937 random(3);
+  std::normal_distribution<double> normal;
+  for (const Eigen::Vector3d& phi : test_rotation_vectors()) {
+    const Eigen::Vector3d u(normal(random), normal(random), normal(random));
+    const double h = 1e-6;
+    // d/dt exp(phi + t u) exp(phi)^T at t = 0 is [J_l(phi) u]_x.
+    const Eigen::Matrix3d derivative =
+        (so3_exp(phi + h * u) - so3_exp(phi - h * u)) / (2 * h) * so3_exp(phi).transpose();
+    EXPECT_LT((derivative - cross_matrix(meshik::so3_left_jacobian_times(phi, u))).norm(), 1e-8)
+        << "angle " << phi.norm();
+  }
+}
+
+TEST(So3, RodriguesCoefficientsAndDerivativesAreAccurateOnBothSidesOfTheTaylorSwitch) {
+  for (double theta : {0.03, 0.0999999, 0.1, 0.1000001, 0.5, 2.0, 3.1, 5.0, 9.0}) {
+    // References in long double (its 64-bit mantissa absorbs the cancellations for these angles).
+    const long double t = theta, t2 = t * t;
+    const long double a = std::sin(t) / t, b = (1 - std::cos(t)) / t2, c = (t - std::sin(t)) / (t2 * t);
+    const long double db = (a - 2 * b) / (2 * t2), dc = (b - 3 * c) / (2 * t2);
+    const meshik::RodriguesCoefficients k = meshik::rodrigues_coefficients(theta * theta);
+    EXPECT_NEAR(k.a, static_cast<double>(a), 4e-16) << theta;
+    EXPECT_NEAR(k.b, static_cast<double>(b), 4e-16) << theta;
+    // (t - sin t) / t^3 cancels just above the switch to the series (about 3 digits at 0.1).
+    EXPECT_NEAR(k.c, static_cast<double>(c), theta < 0.5 ? 1e-13 : 4e-16) << theta;
+    const double theta_squared = theta * theta;
+    double k_db, k_dc;
+    meshik::rodrigues_derivative_lanes<1>(&theta_squared, &k.a, &k.b, &k.c, &k_db, &k_dc);
+    EXPECT_NEAR(k_db, static_cast<double>(db), 1e-12) << theta;
+    EXPECT_NEAR(k_dc, static_cast<double>(dc), 1e-11) << theta;
+  }
+  // At the identity: the series' constant terms.
+  const meshik::RodriguesCoefficients zero = meshik::rodrigues_coefficients(0.0);
+  EXPECT_EQ(zero.a, 1.0);
+  EXPECT_EQ(zero.b, 0.5);
+  EXPECT_EQ(zero.c, 1.0 / 6.0);
+}
+
+TEST(So3, VectorisedSineAndCosineMatchTheLibrary) {
+  constexpr int kLanes = 8;
+  double x[kLanes], s[kLanes], c[kLanes];
+  for (int start = 0; start < 4000; start += kLanes) {
+    for (int l = 0; l < kLanes; ++l) x[l] = (start + l) * 0.01 + 1e-3 * l;
+    meshik::sin_cos_lanes<kLanes>(x, s, c);
+    for (int l = 0; l < kLanes; ++l) {
+      EXPECT_NEAR(s[l], std::sin(x[l]), 4e-16) << x[l];
+      EXPECT_NEAR(c[l], std::cos(x[l]), 4e-16) << x[l];
+    }
+  }
+}
+
+TEST(So3, PolarDecompositionIsProperEvenForReflectionsAndDegenerateMatrices) {
+  std::mt19937 random(11);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Matrix3d> matrices;
+  for (int i = 0; i < 20; ++i) {
+    Eigen::Matrix3d t;
+    for (int e = 0; e < 9; ++e) t(e) = normal(random);
+    matrices.push_back(t);
+  }
+  matrices.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal());               // a reflection
+  matrices.push_back(Eigen::Vector3d(2, 0.5, 0).asDiagonal());              // rank 2 (a flat triangle)
+  matrices.push_back(Eigen::Matrix3d::Zero());                               // rank 0
+  matrices.push_back(so3_exp(Eigen::Vector3d(0, 0, kPi - 1e-9)) * 1.5);    // near a half turn
+  for (const Eigen::Matrix3d& t : matrices) {
+    const meshik::PolarDecomposition p = polar_decomposition(t);
+    EXPECT_LT((p.rotation * p.rotation.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-13);
+    EXPECT_NEAR(p.rotation.determinant(), 1.0, 1e-13);
+    EXPECT_LT((p.stretch - p.stretch.transpose()).norm(), 1e-13);
+    EXPECT_LT((p.rotation * p.stretch - t).norm(), 1e-13 * std::max(1.0, t.norm()));
+  }
+}
+
+TEST(RotationBranches, ClosestBranchFollowsTheReference) {
+  const Eigen::Vector3d axis(0, 0, 1);
+  // Principal log 0.9 pi about axis; a reference at -1.1 pi about axis (the same rotation).
+  const Eigen::Vector3d principal = 0.9 * kPi * axis;
+  EXPECT_LT((meshik::closest_log_branch(principal, -1.05 * kPi * axis) - (-1.1 * kPi) * axis).norm(), 1e-12);
+  EXPECT_LT((meshik::closest_log_branch(principal, 0.8 * kPi * axis) - principal).norm(), 1e-15);
+  EXPECT_LT((meshik::closest_log_branch(principal, 2.7 * kPi * axis) - 2.9 * kPi * axis).norm(), 1e-12);
+  // The identity next to a full turn about x becomes that full turn.
+  const Eigen::Vector3d turn = meshik::closest_log_branch(Eigen::Vector3d::Zero(), Eigen::Vector3d(6.2, 0, 0));
+  EXPECT_LT((turn - Eigen::Vector3d(2 * kPi, 0, 0)).norm(), 1e-12);
+}
+
+TEST(RotationBranches, ATwistBeyondAHalfTurnKeepsContinuousLogs) {
+  // A strip of triangles (a path in the adjacency) rotating about z from 0 to 1.8 pi.
+  const int m = 60;
+  meshik::TriangleAdjacency path;
+  path.start.push_back(0);
+  for (int j = 0; j < m; ++j) {
+    if (j > 0) path.neighbour.push_back(j - 1);
+    if (j + 1 < m) path.neighbour.push_back(j + 1);
+    path.start.push_back(static_cast<int>(path.neighbour.size()));
+  }
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::Vector3d> logs;
+  for (int j = 0; j < m; ++j) {
+    rotations.push_back(so3_exp(Eigen::Vector3d(0, 0, 1.8 * kPi * j / (m - 1))));
+    logs.push_back(so3_log(rotations.back()));
+  }
+  int jumps = 0;
+  for (int j = 1; j < m; ++j) jumps += (logs[j] - logs[j - 1]).norm() > kPi;
+  EXPECT_EQ(jumps, 1);  // the principal logs jump once, at the half turn
+  meshik::choose_consistent_log_branches(path, rotations, logs);
+  for (int j = 0; j < m; ++j) {
+    EXPECT_NEAR(logs[j].z(), 1.8 * kPi * j / (m - 1), 1e-12) << j;
+    EXPECT_LT((so3_exp(logs[j]) - rotations[j]).norm(), 1e-12);  // still logs of the same rotations
+  }
+}
+
+}  // namespace
