@@ -74,9 +74,9 @@ def test_report_records_fit_weights_timings_and_sizes(shot, tmp_path):
     assert report["solver"]["feature_space"] == "linear" and report["solver"]["handle_vertices"] == 20
     assert report["handle_fit_error"]["max"] < 1e-8  # handles are hard constraints
     first, *others = report["frames"]
-    assert first["weights"] == [0.0, 0.0]  # frame 1 asks for the rest pose: nothing to do
-    for frame in others:
-        assert len(frame["weights"]) == 2 and frame["iterations"] >= 1 and frame["solve_seconds"] > 0
+    np.testing.assert_allclose(first["weights"], [0.0, 0.0], atol=1e-9)  # frame 1 asks for the rest pose
+    for frame in others:  # in the linear space the solver's linear-space start is the optimum already
+        assert len(frame["weights"]) == 2 and frame["converged"] and frame["solve_seconds"] > 0
     # the bend grows frame by frame: so does the weight of the example bent the same way (about y)
     first_example = [frame["weights"][0] for frame in report["frames"]]
     assert first_example == sorted(first_example) and first_example[-1] > 0.5
