@@ -5,6 +5,7 @@
 #include "pose_evaluation.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "feature_space.h"
 #include "simd_clones.h"
@@ -38,29 +39,47 @@ void accumulate_jacobian_products(const double* __restrict out, int k, double* _
   }
 }
 
-// G'^T for one batch: every free corner q of triangle j adds g_q . (row c of block col) to its
-// row of rhs (#unknowns by 3 columns, coordinate-major), for all blocks col < columns of out.
-// lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's;
-// by_column: scratch of 2 by 3 columns doubles.
+// Asks the cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
+// (vertices) will update, ahead of the scatter: the unknowns are in the factor's order, so
+// neighbouring triangles' rows are far apart.
+void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, const int* corners,
+                   int count) {
+  constexpr int kLineDoubles = 64 / sizeof(double);
+  for (int i = 0; i < count; ++i) {
+    const int u = unknown_of_vertex[corners[i]];
+    if (u < 0) continue;
+    const double* row = rhs + static_cast<size_t>(u) * stride;
+    for (int e = 0; e < stride; e += kLineDoubles) __builtin_prefetch(row + e, 1);
+  }
+}
+
+// G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
+// row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_): block 0 (F) and, with
+// the Jacobian, blocks 1 .. k (dF/dw) of out. lanes: triangles in the batch; triangles (lanes by 3)
+// and gradient (lanes by 6): the batch's; by_column: scratch of 2 by stride doubles.
 MESHIK_SIMD_CLONES
-void scatter_batch(const double* out, int columns, int lanes, const int* triangles,
-                   const double* gradient, const int* unknown_of_vertex, double* by_column,
-                   double* rhs) {
-  const int nrhs = 3 * columns;
+void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int lanes,
+                   const int* triangles, const double* gradient, const int* unknown_of_vertex,
+                   double* by_column, double* rhs) {
   double* first = by_column;
-  double* second = by_column + nrhs;
+  double* second = by_column + stride;
+  std::fill(by_column, by_column + 2 * stride, 0.0);
+  const int blocks = with_jacobian ? k : 0;
   for (int l = 0; l < lanes; ++l) {
-    for (int c = 0; c < 3; ++c)
-      for (int col = 0; col < columns; ++col) {
-        first[c * columns + col] = out[(col * 6 + 2 * c) * L + l];
-        second[c * columns + col] = out[(col * 6 + 2 * c + 1) * L + l];
+    for (int c = 0; c < 3; ++c) {
+      first[c] = out[(2 * c) * L + l];
+      second[c] = out[(2 * c + 1) * L + l];
+      for (int a = 0; a < blocks; ++a) {
+        first[3 + c * k + a] = out[((a + 1) * 6 + 2 * c) * L + l];
+        second[3 + c * k + a] = out[((a + 1) * 6 + 2 * c + 1) * L + l];
       }
+    }
     for (int q = 0; q < 3; ++q) {
       const int u = unknown_of_vertex[triangles[3 * l + q]];
       if (u < 0) continue;
       const double g0 = gradient[6 * l + 2 * q], g1 = gradient[6 * l + 2 * q + 1];
-      double* row = rhs + static_cast<size_t>(u) * nrhs;
-      for (int i = 0; i < nrhs; ++i) row[i] += g0 * first[i] + g1 * second[i];
+      double* row = rhs + static_cast<size_t>(u) * stride;
+      for (int i = 0; i < stride; ++i) row[i] += g0 * first[i] + g1 * second[i];
     }
   }
 }
@@ -87,23 +106,30 @@ double batch_residual(const double* vertices, const int* triangles, const double
   return energy;
 }
 
-// H^T Z (#E by #E) and H^T x0 (#E) over the unknowns and coordinates, from the right-hand sides
-// before (H) and after (x0, Z) the solve (#unknowns by 3 (#E + 1)).
+// H^T K'^{-1} H (#E by #E, lower triangle added) and H^T x0 (#E) as (L^{-1} H)^T (L^{-1} H) and
+// (L^{-1} H)^T (L^{-1} b), from the forward-solved rows (#unknowns rows of `stride` doubles,
+// layout of PoseEvaluator::rhs_), summed over the coordinates.
 MESHIK_SIMD_CLONES
-void schur_products(const double* before, const double* after, int num_unknowns, int k,
-                    double* htz, double* htx) {
-  const int columns = k + 1;
-  for (int u = 0; u < num_unknowns; ++u)
+void schur_products(const double* forward, int num_unknowns, int k, int stride, double* hth,
+                    double* htb) {
+  for (int u = 0; u < num_unknowns; ++u) {
+    const double* row = forward + static_cast<size_t>(u) * stride;
     for (int c = 0; c < 3; ++c) {
-      const size_t base = (static_cast<size_t>(u) * 3 + c) * columns;
-      const double* h = before + base + 1;
-      const double* z = after + base + 1;
-      const double x0 = after[base];
+      const double* y = row + 3 + c * k;
       for (int a = 0; a < k; ++a) {
-        htx[a] += h[a] * x0;
-        for (int b = 0; b < k; ++b) htz[a * k + b] += h[a] * z[b];
+        htb[a] += y[a] * row[c];
+        for (int b = 0; b <= a; ++b) hth[a * k + b] += y[a] * y[b];
       }
     }
+  }
+}
+
+// The first 64-byte boundary in storage, after sizing storage to hold `count` doubles from there.
+double* aligned_start(std::vector<double>& storage, size_t count) {
+  constexpr size_t kLineDoubles = 64 / sizeof(double);
+  storage.resize(count + kLineDoubles);
+  const size_t misalignment = reinterpret_cast<uintptr_t>(storage.data()) / sizeof(double) % kLineDoubles;
+  return storage.data() + (kLineDoubles - misalignment) % kLineDoubles;
 }
 
 }  // namespace
@@ -120,17 +146,14 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
-      scatter_rows_(6 * (set.num_examples + 1)),
+      scatter_rows_(2 * PoseSystem::padded_width(3 * (set.num_examples + 1))),
       blended_(buffers.blended),
-      rhs_(buffers.rhs),
-      rhs_before_solve_(buffers.rhs_before_solve),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
       curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L) {
   const int k = set.num_examples;
-  const size_t rhs_size = static_cast<size_t>(system.num_unknowns()) * 3 * (k + 1);
-  rhs_.resize(rhs_size);
-  rhs_before_solve_.resize(rhs_size);
+  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
+                                        PoseSystem::padded_width(3 * (k + 1)));
   coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
   blended_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
@@ -153,17 +176,20 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
 }
 
-void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacobian) {
+void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const int k = set_.num_examples;
   const int m = set_.num_triangles;
-  const int nrhs = 3 * columns;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
-  std::fill(rhs_.begin(), rhs_.begin() + static_cast<size_t>(system_.num_unknowns()) * nrhs, 0.0);
+  std::fill(rhs_, rhs_ + static_cast<size_t>(system_.num_unknowns()) * stride_, 0.0);
   std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
   std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
   jts_.setZero(k);
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+    if (batch + 1 < set_.features.num_batches)
+      prefetch_rows(rhs_, stride_, system_.unknown_of_vertex().data(),
+                    set_.triangles.data() + 3 * static_cast<size_t>(batch + 1) * L,
+                    3 * std::min(L, m - (batch + 1) * L));
     blend_batch(set_.features, space_, weights, batch, out);
     std::copy(out, out + 6 * L, blended_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
@@ -179,12 +205,13 @@ void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacob
             jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
       }
     }
-    scatter_batch(out, columns, lanes, set_.triangles.data() + 3 * static_cast<size_t>(first),
+    scatter_batch(out, k, with_jacobian, stride_, lanes,
+                  set_.triangles.data() + 3 * static_cast<size_t>(first),
                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_.data());
+                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_);
   }
   for (int u = 0; u < system_.num_unknowns(); ++u)
-    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * nrhs + c * columns] -= coupling_[3 * u + c];
+    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * stride_ + c] -= coupling_[3 * u + c];
   jtj_.resize(k, k);
   for (int a = 0; a < k; ++a) {
     for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
@@ -196,18 +223,13 @@ void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacob
   }
 }
 
-void PoseEvaluator::gather_vertices(int columns, double* vertices) const {
+void PoseEvaluator::gather_vertices(double* vertices) const {
   const std::vector<int>& unknown_of_vertex = system_.unknown_of_vertex();
   const std::vector<int>& handle_of_vertex = system_.handle_of_vertex();
   for (int v = 0; v < set_.num_vertices; ++v) {
     const double* from = set_.rest.data() + 3 * static_cast<size_t>(v);
-    double solved[3];
     if (unknown_of_vertex[v] >= 0) {
-      const double* row = rhs_.data() + static_cast<size_t>(unknown_of_vertex[v]) * 3 * columns;
-      solved[0] = row[0];
-      solved[1] = row[columns];
-      solved[2] = row[2 * columns];
-      from = solved;
+      from = rhs_ + static_cast<size_t>(unknown_of_vertex[v]) * stride_;
     } else if (handle_of_vertex[v] >= 0) {
       from = targets_ + 3 * static_cast<size_t>(handle_of_vertex[v]);
     }
@@ -254,26 +276,25 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   const int k = set_.num_examples;
-  const int columns = with_jacobian ? k + 1 : 1;
-  const int nrhs = 3 * columns;
   const int n_unknowns = system_.num_unknowns();
-  assemble(weights, columns, with_jacobian);
-  const size_t used = static_cast<size_t>(n_unknowns) * nrhs;
-  if (with_jacobian) std::copy(rhs_.begin(), rhs_.begin() + used, rhs_before_solve_.begin());
-  if (n_unknowns > 0) system_.solve(rhs_.data(), nrhs);
+  const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
+  stride_ = PoseSystem::padded_width(nrhs);
+  assemble(weights, with_jacobian);
+  system_.forward_solve(rhs_, stride_, nrhs);
+  Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
+  if (with_jacobian) schur_products(rhs_, n_unknowns, k, stride_, hth.data(), htx.data());
+  system_.backward_solve(rhs_, stride_, with_jacobian && keep_jacobian_solution_ ? nrhs : 3);
 
   out.weights.assign(weights, weights + k);
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
-  gather_vertices(columns, out.vertices.data());
+  gather_vertices(out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
   out.energy = residual_energy(out.vertices.data()) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
   if (!with_jacobian) return;
 
-  Eigen::MatrixXd htz = Eigen::MatrixXd::Zero(k, k);
-  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
-  schur_products(rhs_before_solve_.data(), rhs_.data(), n_unknowns, k, htz.data(), htx.data());
-  out.schur = jtj_ - 0.5 * (htz + htz.transpose());
+  out.schur = jtj_ - hth.selfadjointView<Eigen::Upper>().toDenseMatrix();
   out.schur.diagonal().array() += regularization_;
   out.step_rhs = htx - jts_ - regularization_ * w;
 }
