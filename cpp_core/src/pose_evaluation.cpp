@@ -106,21 +106,28 @@ double batch_residual(const double* vertices, const int* triangles, const double
   return energy;
 }
 
-// H^T K'^{-1} H (#E by #E, lower triangle added) and H^T x0 (#E) as (L^{-1} H)^T (L^{-1} H) and
-// (L^{-1} H)^T (L^{-1} b), from the forward-solved rows (#unknowns rows of `stride` doubles,
-// layout of PoseEvaluator::rhs_), summed over the coordinates.
+// P += sum over the rows u in [begin, end) of row_u[j] row_u (j in [3, columns), the Jacobian
+// columns; all `stride` entries of row_u), four rows at a time so that each row of P is loaded
+// and stored once per four. forward: rows of `stride` doubles; P: (columns - 3) rows of stride.
 MESHIK_SIMD_CLONES
-void schur_products(const double* forward, int num_unknowns, int k, int stride, double* hth,
-                    double* htb) {
-  for (int u = 0; u < num_unknowns; ++u) {
-    const double* row = forward + static_cast<size_t>(u) * stride;
-    for (int c = 0; c < 3; ++c) {
-      const double* y = row + 3 + c * k;
-      for (int a = 0; a < k; ++a) {
-        htb[a] += y[a] * row[c];
-        for (int b = 0; b <= a; ++b) hth[a * k + b] += y[a] * y[b];
-      }
+void add_outer_products(const double* forward, int begin, int end, int columns, int stride,
+                        double* __restrict outer) {
+  constexpr int kRows = 4;
+  int u = begin;
+  for (; u + kRows <= end; u += kRows) {
+    const double* __restrict r0 = forward + static_cast<size_t>(u) * stride;
+    const double* __restrict r1 = r0 + stride;
+    const double* __restrict r2 = r1 + stride;
+    const double* __restrict r3 = r2 + stride;
+    for (int j = 3; j < columns; ++j) {
+      double* __restrict p = outer + (j - 3) * stride;
+      for (int i = 0; i < stride; ++i) p[i] += r0[j] * r0[i] + r1[j] * r1[i] + r2[j] * r2[i] + r3[j] * r3[i];
     }
+  }
+  for (; u < end; ++u) {
+    const double* __restrict r = forward + static_cast<size_t>(u) * stride;
+    for (int j = 3; j < columns; ++j)
+      for (int i = 0; i < stride; ++i) outer[(j - 3) * stride + i] += r[j] * r[i];
   }
 }
 
@@ -150,7 +157,9 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       blended_(buffers.blended),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
-      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L) {
+      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
+      outer_products_(static_cast<size_t>(3 * set.num_examples) *
+                      PoseSystem::padded_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
                                         PoseSystem::padded_width(3 * (k + 1)));
@@ -281,9 +290,20 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   stride_ = PoseSystem::padded_width(nrhs);
   assemble(weights, with_jacobian);
   system_.forward_solve(rhs_, stride_, nrhs);
+  // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
+  // the outer products of the forward-solved rows, summed over the coordinates.
   Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
   Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
-  if (with_jacobian) schur_products(rhs_, n_unknowns, k, stride_, hth.data(), htx.data());
+  if (with_jacobian) {
+    std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
+    add_outer_products(rhs_, 0, n_unknowns, nrhs, stride_, outer_products_.data());
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < k; ++a) {
+        const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;
+        htx(a) += p[c];
+        for (int b = 0; b < k; ++b) hth(a, b) += p[3 + c * k + b];
+      }
+  }
   system_.backward_solve(rhs_, stride_, with_jacobian && keep_jacobian_solution_ ? nrhs : 3);
 
   out.weights.assign(weights, weights + k);
@@ -294,7 +314,7 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   out.has_second_order = false;
   if (!with_jacobian) return;
 
-  out.schur = jtj_ - hth.selfadjointView<Eigen::Upper>().toDenseMatrix();
+  out.schur = jtj_ - 0.5 * (hth + hth.transpose());
   out.schur.diagonal().array() += regularization_;
   out.step_rhs = htx - jts_ - regularization_ * w;
 }
