@@ -221,7 +221,8 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
     x_f_phi[1][l] = x_f[2][l] * r.phi[0][l] - x_f[0][l] * r.phi[2][l];
     x_f_phi[2][l] = x_f[0][l] * r.phi[1][l] - x_f[1][l] * r.phi[0][l];
   }
-  // psi_b and X(J_b) for a chunk of up to kChunk examples b, then every a against the chunk.
+  // psi_b and X(J_b) for a chunk of up to kChunk examples b, then every a >= b against the chunk
+  // (the second derivatives are symmetric in a and b).
   constexpr int kChunk = 8;
   double psi_chunk[kChunk][3][L], x_j_chunk[kChunk][3][L];
   for (int b0 = 0; b0 < k; b0 += kChunk) {
@@ -238,7 +239,7 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
       cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
       for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
       column_cross_sum(rotated_d, residual, x_rd);
-      for (int i = 0; i < chunk; ++i) {
+      for (int i = 0; i < chunk && b0 + i <= a; ++i) {
         const int b = b0 + i;
         const double* v = feature + b * 9 * L;  // phi_b
         const double(&psi_b)[3][L] = psi_chunk[i];

@@ -277,10 +277,11 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
                                   curvature_lanes_.data());
   }
   for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int l = 0; l < L; ++l)
-        at.second_order(a, b) -= 0.5 * (curvature_lanes_[(a * k + b) * L + l] +
-                                        curvature_lanes_[(b * k + a) * L + l]);
+    for (int b = 0; b <= a; ++b) {
+      double sum = 0.0;
+      for (int l = 0; l < L; ++l) sum += curvature_lanes_[(a * k + b) * L + l];
+      at.second_order(a, b) = at.second_order(b, a) = -sum;
+    }
 }
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
