@@ -56,16 +56,18 @@ void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, 
 // G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
 // row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_): block 0 (F) and, with
 // the Jacobian, blocks 1 .. k (dF/dw) of out. lanes: triangles in the batch; triangles (lanes by 3)
-// and gradient (lanes by 6): the batch's; by_column: scratch of 2 by stride doubles.
+// and gradient (lanes by 6): the batch's; by_lane: scratch of kLanes by 2 by stride doubles.
+// All lanes are transposed before any row is updated, so the vector loads of the transposed
+// values do not wait on the scalar stores that wrote them.
 MESHIK_SIMD_CLONES
 void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int lanes,
                    const int* triangles, const double* gradient, const int* unknown_of_vertex,
-                   double* by_column, double* rhs) {
-  double* first = by_column;
-  double* second = by_column + stride;
-  std::fill(by_column, by_column + 2 * stride, 0.0);
+                   double* by_lane, double* rhs) {
+  std::fill(by_lane, by_lane + 2 * stride * L, 0.0);
   const int blocks = with_jacobian ? k : 0;
   for (int l = 0; l < lanes; ++l) {
+    double* first = by_lane + 2 * stride * l;
+    double* second = first + stride;
     for (int c = 0; c < 3; ++c) {
       first[c] = out[(2 * c) * L + l];
       second[c] = out[(2 * c + 1) * L + l];
@@ -74,6 +76,10 @@ void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int
         second[3 + c * k + a] = out[((a + 1) * 6 + 2 * c + 1) * L + l];
       }
     }
+  }
+  for (int l = 0; l < lanes; ++l) {
+    const double* first = by_lane + 2 * stride * l;
+    const double* second = first + stride;
     for (int q = 0; q < 3; ++q) {
       const int u = unknown_of_vertex[triangles[3 * l + q]];
       if (u < 0) continue;
@@ -153,7 +159,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
-      scatter_rows_(2 * PoseSystem::padded_width(3 * (set.num_examples + 1))),
+      scatter_rows_(2 * L * PoseSystem::padded_width(3 * (set.num_examples + 1))),
       blended_(buffers.blended),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
