@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 
 #include "feature_space.h"
 #include "simd_clones.h"
@@ -90,25 +91,28 @@ void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int
   }
 }
 
-// R_j = Q_j(x) - F_j for the `lanes` triangles of one batch, 6 rows of kLanes (padding lanes
-// zero); returns sum |R_j|^2. vertices: #V by 3; triangles / gradient: the batch's first triangle's
-// entries; blended: the batch's F (6 rows of kLanes).
+// Replaces F_j by R_j = Q_j(x) - F_j in `terms` (the batch's 6 rows of kLanes) for its `lanes`
+// triangles, zeroing the padding lanes; returns sum |R_j|^2. vertices: #V by 3; triangles /
+// gradient: the batch's first triangle's entries.
 MESHIK_SIMD_CLONES
 double batch_residual(const double* vertices, const int* triangles, const double* gradient,
-                      const double* blended, int lanes, double* residual) {
-  std::fill(residual, residual + 6 * L, 0.0);
+                      int lanes, double* terms) {
   for (int l = 0; l < lanes; ++l) {
     const double* g = gradient + 6 * l;
     const double* x0 = vertices + 3 * static_cast<size_t>(triangles[3 * l]);
     const double* x1 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 1]);
     const double* x2 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 2]);
     for (int c = 0; c < 3; ++c) {
-      residual[(2 * c) * L + l] = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - blended[(2 * c) * L + l];
-      residual[(2 * c + 1) * L + l] = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - blended[(2 * c + 1) * L + l];
+      double* r0 = terms + (2 * c) * L + l;
+      double* r1 = terms + (2 * c + 1) * L + l;
+      *r0 = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - *r0;
+      *r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - *r1;
     }
   }
+  for (int e = 0; e < 6; ++e)
+    for (int l = lanes; l < L; ++l) terms[e * L + l] = 0.0;
   double energy = 0.0;
-  for (int e = 0; e < 6 * L; ++e) energy += residual[e] * residual[e];
+  for (int e = 0; e < 6 * L; ++e) energy += terms[e] * terms[e];
   return energy;
 }
 
@@ -160,7 +164,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
       scatter_rows_(2 * L * PoseSystem::padded_width(3 * (set.num_examples + 1))),
-      blended_(buffers.blended),
+      residual_(buffers.residual),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
       curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
@@ -170,7 +174,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
                                         PoseSystem::padded_width(3 * (k + 1)));
   coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
-  blended_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
+  residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
@@ -206,7 +210,7 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
                     set_.triangles.data() + 3 * static_cast<size_t>(batch + 1) * L,
                     3 * std::min(L, m - (batch + 1) * L));
     blend_batch(set_.features, space_, weights, batch, out);
-    std::copy(out, out + 6 * L, blended_.data() + static_cast<size_t>(batch) * 6 * L);
+    std::copy(out, out + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
     const int lanes = std::min(L, m - first);
     if (with_jacobian) {
@@ -252,34 +256,31 @@ void PoseEvaluator::gather_vertices(double* vertices) const {
   }
 }
 
-double PoseEvaluator::residual_energy(const double* vertices) const {
+double PoseEvaluator::residual_energy(const double* vertices) {
   double energy = 0.0;
-  double residual[6 * L];
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
     const int first = batch * L;
     energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
                              set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                             blended_.data() + static_cast<size_t>(batch) * 6 * L,
-                             std::min(L, set_.num_triangles - first), residual);
+                             std::min(L, set_.num_triangles - first),
+                             residual_.data() + static_cast<size_t>(batch) * 6 * L);
   }
   return energy;
 }
 
 void PoseEvaluator::add_second_order(PoseEvaluation& at) {
+  if (at.evaluation != evaluations_)
+    throw std::logic_error("PoseEvaluator::add_second_order: not the evaluator's last evaluation");
   const int k = set_.num_examples;
   at.second_order.setZero(k, k);
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
-  double residual[6 * L];
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
-    const int first = batch * L;
     blend_batch(set_.features, space_, at.weights.data(), batch, out);
-    batch_residual(at.vertices.data(), set_.triangles.data() + 3 * static_cast<size_t>(first),
-                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first), out,
-                   std::min(L, set_.num_triangles - first), residual);
-    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out, residual,
+    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out,
+                                  residual_.data() + static_cast<size_t>(batch) * 6 * L,
                                   curvature_lanes_.data());
   }
   for (int a = 0; a < k; ++a)
@@ -319,6 +320,7 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
   out.energy = residual_energy(out.vertices.data()) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
+  out.evaluation = ++evaluations_;
   if (!with_jacobian) return;
 
   out.schur = jtj_ - 0.5 * (hth + hth.transpose());

@@ -27,13 +27,14 @@ struct PoseEvaluation {
   // (zero in the linear space); only once PoseEvaluator::add_second_order has run.
   Eigen::MatrixXd second_order;
   bool has_second_order = false;
+  unsigned long evaluation = 0;  // its number among its evaluator's evaluations (from 1)
 };
 
 // The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
   std::vector<double> coupling;  // #unknowns by 3: K_fh x_h
-  std::vector<double> blended;   // #batches by 6 by kLanes: F_j(w)
+  std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
   // #unknowns rows of PoseSystem::padded_width(3 (#E + 1)) doubles, from the first 64-byte
   // boundary: the right-hand sides, then their solution (layout: PoseEvaluator's rhs_).
   std::vector<double> rhs;
@@ -59,8 +60,9 @@ class PoseEvaluator {
     return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * set_.num_examples;
   }
 
-  // Fills at.second_order for a pose this evaluator evaluated (one more pass over the triangles,
-  // re-blending them; only worth it when a step is taken from `at`).
+  // Fills at.second_order for the pose this evaluator evaluated last (one more pass over the
+  // triangles, re-blending them and reusing that evaluation's residuals; only worth it when a
+  // step is taken from `at`). Throws std::logic_error for any other pose.
   void add_second_order(PoseEvaluation& at);
 
  private:
@@ -69,8 +71,9 @@ class PoseEvaluator {
   void assemble(const double* weights, bool with_jacobian);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(double* vertices) const;
-  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble().
-  double residual_energy(const double* vertices) const;
+  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble(); replaces F
+  // by those residuals in residual_.
+  double residual_energy(const double* vertices);
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
@@ -82,7 +85,8 @@ class PoseEvaluator {
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
   std::vector<double> scatter_rows_;     // kLanes by 2 by stride_: a batch's blocks, by column
-  std::vector<double>& blended_;         // buffers' blended
+  std::vector<double>& residual_;        // buffers' residual
+  unsigned long evaluations_ = 0;        // evaluations so far
   // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
   // coordinates of G'^T s, then with the Jacobian coordinate c's #E columns of G'^T J at
   // 3 + c #E + a; solved in place (x0 in the first 3 columns).
