@@ -109,8 +109,9 @@ double batch_residual(const double* vertices, const int* triangles, const double
       *r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - *r1;
     }
   }
-  for (int e = 0; e < 6; ++e)
-    for (int l = lanes; l < L; ++l) terms[e * L + l] = 0.0;
+  if (lanes < L)  // only the last batch
+    for (int e = 0; e < 6; ++e)
+      for (int l = lanes; l < L; ++l) terms[e * L + l] = 0.0;
   double energy = 0.0;
   for (int e = 0; e < 6 * L; ++e) energy += terms[e] * terms[e];
   return energy;
@@ -252,7 +253,10 @@ void PoseEvaluator::gather_vertices(double* vertices) const {
     } else if (handle_of_vertex[v] >= 0) {
       from = targets_ + 3 * static_cast<size_t>(handle_of_vertex[v]);
     }
-    std::copy(from, from + 3, vertices + 3 * static_cast<size_t>(v));
+    double* to = vertices + 3 * static_cast<size_t>(v);
+    to[0] = from[0];  // three assignments, not a library call per vertex
+    to[1] = from[1];
+    to[2] = from[2];
   }
 }
 
