@@ -150,6 +150,13 @@ MESHIK_LANE_INLINE void column_cross_sum(const double* m, const double* res, dou
   }
 }
 
+// Asks the cache for `count` doubles from p (the next batch's features: the hardware prefetcher
+// alone leaves the blend waiting on memory).
+MESHIK_LANE_INLINE void prefetch_doubles(const double* p, size_t count) {
+  constexpr size_t kLineDoubles = 64 / sizeof(double);
+  for (size_t e = 0; e < count; e += kLineDoubles) __builtin_prefetch(p + e);
+}
+
 MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], int l) {
   return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
 }
@@ -172,6 +179,10 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
     return;
   }
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  if (batch + 1 < features.num_batches) {
+    prefetch_doubles(feature + k * 9 * L, static_cast<size_t>(k) * 9 * L);
+    prefetch_doubles(basis + 6 * L, 6 * L);
+  }
   BatchRotation r;
   blend_rotation(feature, w, k, r);
   // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
@@ -210,40 +221,51 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
     x_f_phi[1][l] = x_f[2][l] * r.phi[0][l] - x_f[0][l] * r.phi[2][l];
     x_f_phi[2][l] = x_f[0][l] * r.phi[1][l] - x_f[1][l] * r.phi[0][l];
   }
-  for (int a = 0; a < k; ++a) {
-    const double* u = feature + a * 9 * L;  // phi_a
-    double psi_a[3][L], x_rd[3][L], rotated_d[6 * L];
-    left_jacobian_times(r, u, psi_a);
-    // R D_a = J_a - psi_a x F.
-    cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
-    for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
-    column_cross_sum(rotated_d, residual, x_rd);
-    for (int b = 0; b < k; ++b) {
-      const double* v = feature + b * 9 * L;  // phi_b
-      double psi_b[3][L], x_jb[3][L];
-      left_jacobian_times(r, v, psi_b);
-      column_cross_sum(out + (b + 1) * 6 * L, residual, x_jb);
-      double* acc = curvature_lanes + (a * k + b) * L;
-      for (int l = 0; l < L; ++l) {
-        const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
-        const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
-        const double v0 = v[l], v1 = v[L + l], v2 = v[2 * L + l];
-        // pu = phi x u, vu = v x u.
-        const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
-        const double vu0 = v1 * u2 - v2 * u1, vu1 = v2 * u0 - v0 * u2, vu2 = v0 * u1 - v1 * u0;
-        const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
-        // x x v for the term (v x pu) . x = pu . (x x v).
-        const double xv0 = x1 * v2 - x2 * v1, xv1 = x2 * v0 - x0 * v2, xv2 = x0 * v1 - x1 * v0;
-        const double phi_v = px * v0 + py * v1 + pz * v2;
-        const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2;
-        const double pu_xphi = pu0 * x_f_phi[0][l] + pu1 * x_f_phi[1][l] + pu2 * x_f_phi[2][l];
-        const double vu_x = vu0 * x0 + vu1 * x1 + vu2 * x2;
-        const double vu_xphi = vu0 * x_f_phi[0][l] + vu1 * x_f_phi[1][l] + vu2 * x_f_phi[2][l];
-        const double pu_xv = pu0 * xv0 + pu1 * xv1 + pu2 * xv2;
-        // (d psi_a / dw_b) . x with d/dv [u + b phi x u + c phi x (phi x u)].
-        const double dpsi_x = 2.0 * phi_v * (db[l] * pu_x + dc[l] * pu_xphi) + r.b[l] * vu_x +
-                              r.c[l] * (pu_xv + vu_xphi);
-        acc[l] += dpsi_x + dot_lane(psi_a, x_jb, l) + dot_lane(psi_b, x_rd, l);
+  // psi_b and X(J_b) for a chunk of up to kChunk examples b, then every a >= b against the chunk
+  // (the second derivatives are symmetric in a and b).
+  constexpr int kChunk = 8;
+  double psi_chunk[kChunk][3][L], x_j_chunk[kChunk][3][L];
+  for (int b0 = 0; b0 < k; b0 += kChunk) {
+    const int chunk = k - b0 < kChunk ? k - b0 : kChunk;
+    for (int i = 0; i < chunk; ++i) {
+      left_jacobian_times(r, feature + (b0 + i) * 9 * L, psi_chunk[i]);
+      column_cross_sum(out + (b0 + i + 1) * 6 * L, residual, x_j_chunk[i]);
+    }
+    for (int a = 0; a < k; ++a) {
+      const double* u = feature + a * 9 * L;  // phi_a
+      double psi_a[3][L], x_rd[3][L], rotated_d[6 * L];
+      left_jacobian_times(r, u, psi_a);
+      // R D_a = J_a - psi_a x F.
+      cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
+      for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
+      column_cross_sum(rotated_d, residual, x_rd);
+      for (int i = 0; i < chunk && b0 + i <= a; ++i) {
+        const int b = b0 + i;
+        const double* v = feature + b * 9 * L;  // phi_b
+        const double(&psi_b)[3][L] = psi_chunk[i];
+        const double(&x_jb)[3][L] = x_j_chunk[i];
+        double* acc = curvature_lanes + (a * k + b) * L;
+        for (int l = 0; l < L; ++l) {
+          const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
+          const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
+          const double v0 = v[l], v1 = v[L + l], v2 = v[2 * L + l];
+          // pu = phi x u, vu = v x u.
+          const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
+          const double vu0 = v1 * u2 - v2 * u1, vu1 = v2 * u0 - v0 * u2, vu2 = v0 * u1 - v1 * u0;
+          const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
+          // x x v for the term (v x pu) . x = pu . (x x v).
+          const double xv0 = x1 * v2 - x2 * v1, xv1 = x2 * v0 - x0 * v2, xv2 = x0 * v1 - x1 * v0;
+          const double phi_v = px * v0 + py * v1 + pz * v2;
+          const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2;
+          const double pu_xphi = pu0 * x_f_phi[0][l] + pu1 * x_f_phi[1][l] + pu2 * x_f_phi[2][l];
+          const double vu_x = vu0 * x0 + vu1 * x1 + vu2 * x2;
+          const double vu_xphi = vu0 * x_f_phi[0][l] + vu1 * x_f_phi[1][l] + vu2 * x_f_phi[2][l];
+          const double pu_xv = pu0 * xv0 + pu1 * xv1 + pu2 * xv2;
+          // (d psi_a / dw_b) . x with d/dv [u + b phi x u + c phi x (phi x u)].
+          const double dpsi_x = 2.0 * phi_v * (db[l] * pu_x + dc[l] * pu_xphi) + r.b[l] * vu_x +
+                                r.c[l] * (pu_xv + vu_xphi);
+          acc[l] += dpsi_x + dot_lane(psi_a, x_jb, l) + dot_lane(psi_b, x_rd, l);
+        }
       }
     }
   }

@@ -54,8 +54,8 @@ inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * 
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out);
 
-// Nonlinear space only: adds, for every pair (a, b) of examples and lane l, <R_j, d2F_j/dw_a dw_b>
-// over the batch's triangles to curvature_lanes[(a #E + b) kLanes + l], the second-order term of
+// Nonlinear space only: adds, for every pair b <= a of examples and lane l, <R_j, d2F_j/dw_a dw_b>
+// (symmetric in a and b) to curvature_lanes[(a #E + b) kLanes + l], the second-order term of
 // the energy's Hessian that Gauss-Newton leaves out. out: blend_batch's output for this batch at w;
 // residual: R_j = Q_j(x) - F_j(w), 6 rows of kLanes (zero in padding lanes).
 void accumulate_residual_curvature(const ExampleFeatures& features, const double* w, int batch,

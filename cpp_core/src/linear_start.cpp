@@ -20,11 +20,11 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) 
   affine_ = Eigen::MatrixXd::Zero(3 * num_handles, k);
   if (k == 0) return;
 
-  // All handles at the origin: the evaluation gives S, g_U, and Z = K'^{-1} G'^T L in its
-  // right-hand sides (per unknown and coordinate: x0 then the #E columns of Z).
+  // All handles at the origin: the evaluation gives S, g_U, and Z = K'^{-1} G'^T L.
   const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
   EvaluationBuffers buffers;
   PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers);
+  evaluator.keep_jacobian_solution();
   PoseEvaluation at_rest;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
   evaluator.evaluate(zero.data(), true, at_rest);
@@ -32,15 +32,12 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) 
   rest_gradient_ = at_rest.step_rhs;
 
   // -Z^T K_fh x_h: only the rows of Z coupled to a handle.
-  const int columns = k + 1;
-  const double* solved = buffers.rhs.data();
   for (int h = 0; h < num_handles; ++h)
-    for (int s = system.coupling_start()[h]; s < system.coupling_start()[h + 1]; ++s) {
-      const size_t row = static_cast<size_t>(system.coupling_row()[s]) * 3;
-      for (int c = 0; c < 3; ++c)
-        for (int i = 0; i < k; ++i)
-          affine_(3 * h + c, i) -= system.coupling_value()[s] * solved[(row + c) * columns + 1 + i];
-    }
+    for (int s = system.coupling_start()[h]; s < system.coupling_start()[h + 1]; ++s)
+      for (int c = 0; c < 3; ++c) {
+        const double* z = evaluator.jacobian_solution(system.coupling_row()[s], c);
+        for (int i = 0; i < k; ++i) affine_(3 * h + c, i) -= system.coupling_value()[s] * z[i];
+      }
   // + L^T (handles' part of Q): handle h at corner q of triangle j adds x_h . (L_ij g_q).
   const ExampleFeatures& features = set.features;
   for (int j : system.handle_triangles()) {

@@ -5,6 +5,8 @@
 #include "pose_evaluation.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <stdexcept>
 
 #include "feature_space.h"
 #include "simd_clones.h"
@@ -38,72 +40,114 @@ void accumulate_jacobian_products(const double* __restrict out, int k, double* _
   }
 }
 
-// G'^T for one batch: every free corner q of triangle j adds g_q . (row c of block col) to its
-// row of rhs (#unknowns by 3 columns, coordinate-major), for all blocks col < columns of out.
-// lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's;
-// by_column: scratch of 2 by 3 columns doubles.
+// Asks the cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
+// (vertices) will update, ahead of the scatter: the unknowns are in the factor's order, so
+// neighbouring triangles' rows are far apart.
+void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, const int* corners,
+                   int count) {
+  constexpr int kLineDoubles = 64 / sizeof(double);
+  for (int i = 0; i < count; ++i) {
+    const int u = unknown_of_vertex[corners[i]];
+    if (u < 0) continue;
+    const double* row = rhs + static_cast<size_t>(u) * stride;
+    for (int e = 0; e < stride; e += kLineDoubles) __builtin_prefetch(row + e, 1);
+  }
+}
+
+// G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
+// row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_): block 0 (F) and, with
+// the Jacobian, blocks 1 .. k (dF/dw) of out. lanes: triangles in the batch; triangles (lanes by 3)
+// and gradient (lanes by 6): the batch's; by_lane: scratch of kLanes by 2 by stride doubles.
+// All lanes are transposed before any row is updated, so the vector loads of the transposed
+// values do not wait on the scalar stores that wrote them.
 MESHIK_SIMD_CLONES
-void scatter_batch(const double* out, int columns, int lanes, const int* triangles,
-                   const double* gradient, const int* unknown_of_vertex, double* by_column,
-                   double* rhs) {
-  const int nrhs = 3 * columns;
-  double* first = by_column;
-  double* second = by_column + nrhs;
+void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int lanes,
+                   const int* triangles, const double* gradient, const int* unknown_of_vertex,
+                   double* by_lane, double* rhs) {
+  std::fill(by_lane, by_lane + 2 * stride * L, 0.0);
+  const int blocks = with_jacobian ? k : 0;
   for (int l = 0; l < lanes; ++l) {
-    for (int c = 0; c < 3; ++c)
-      for (int col = 0; col < columns; ++col) {
-        first[c * columns + col] = out[(col * 6 + 2 * c) * L + l];
-        second[c * columns + col] = out[(col * 6 + 2 * c + 1) * L + l];
+    double* first = by_lane + 2 * stride * l;
+    double* second = first + stride;
+    for (int c = 0; c < 3; ++c) {
+      first[c] = out[(2 * c) * L + l];
+      second[c] = out[(2 * c + 1) * L + l];
+      for (int a = 0; a < blocks; ++a) {
+        first[3 + c * k + a] = out[((a + 1) * 6 + 2 * c) * L + l];
+        second[3 + c * k + a] = out[((a + 1) * 6 + 2 * c + 1) * L + l];
       }
+    }
+  }
+  for (int l = 0; l < lanes; ++l) {
+    const double* first = by_lane + 2 * stride * l;
+    const double* second = first + stride;
     for (int q = 0; q < 3; ++q) {
       const int u = unknown_of_vertex[triangles[3 * l + q]];
       if (u < 0) continue;
       const double g0 = gradient[6 * l + 2 * q], g1 = gradient[6 * l + 2 * q + 1];
-      double* row = rhs + static_cast<size_t>(u) * nrhs;
-      for (int i = 0; i < nrhs; ++i) row[i] += g0 * first[i] + g1 * second[i];
+      double* row = rhs + static_cast<size_t>(u) * stride;
+      for (int i = 0; i < stride; ++i) row[i] += g0 * first[i] + g1 * second[i];
     }
   }
 }
 
-// R_j = Q_j(x) - F_j for the `lanes` triangles of one batch, 6 rows of kLanes (padding lanes
-// zero); returns sum |R_j|^2. vertices: #V by 3; triangles / gradient: the batch's first triangle's
-// entries; blended: the batch's F (6 rows of kLanes).
+// Replaces F_j by R_j = Q_j(x) - F_j in `terms` (the batch's 6 rows of kLanes) for its `lanes`
+// triangles, zeroing the padding lanes; returns sum |R_j|^2. vertices: #V by 3; triangles /
+// gradient: the batch's first triangle's entries.
 MESHIK_SIMD_CLONES
 double batch_residual(const double* vertices, const int* triangles, const double* gradient,
-                      const double* blended, int lanes, double* residual) {
-  std::fill(residual, residual + 6 * L, 0.0);
+                      int lanes, double* terms) {
   for (int l = 0; l < lanes; ++l) {
     const double* g = gradient + 6 * l;
     const double* x0 = vertices + 3 * static_cast<size_t>(triangles[3 * l]);
     const double* x1 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 1]);
     const double* x2 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 2]);
     for (int c = 0; c < 3; ++c) {
-      residual[(2 * c) * L + l] = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - blended[(2 * c) * L + l];
-      residual[(2 * c + 1) * L + l] = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - blended[(2 * c + 1) * L + l];
+      double* r0 = terms + (2 * c) * L + l;
+      double* r1 = terms + (2 * c + 1) * L + l;
+      *r0 = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - *r0;
+      *r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - *r1;
     }
   }
+  if (lanes < L)  // only the last batch
+    for (int e = 0; e < 6; ++e)
+      for (int l = lanes; l < L; ++l) terms[e * L + l] = 0.0;
   double energy = 0.0;
-  for (int e = 0; e < 6 * L; ++e) energy += residual[e] * residual[e];
+  for (int e = 0; e < 6 * L; ++e) energy += terms[e] * terms[e];
   return energy;
 }
 
-// H^T Z (#E by #E) and H^T x0 (#E) over the unknowns and coordinates, from the right-hand sides
-// before (H) and after (x0, Z) the solve (#unknowns by 3 (#E + 1)).
+// P += sum over the rows u in [begin, end) of row_u[j] row_u (j in [3, columns), the Jacobian
+// columns; all `stride` entries of row_u), four rows at a time so that each row of P is loaded
+// and stored once per four. forward: rows of `stride` doubles; P: (columns - 3) rows of stride.
 MESHIK_SIMD_CLONES
-void schur_products(const double* before, const double* after, int num_unknowns, int k,
-                    double* htz, double* htx) {
-  const int columns = k + 1;
-  for (int u = 0; u < num_unknowns; ++u)
-    for (int c = 0; c < 3; ++c) {
-      const size_t base = (static_cast<size_t>(u) * 3 + c) * columns;
-      const double* h = before + base + 1;
-      const double* z = after + base + 1;
-      const double x0 = after[base];
-      for (int a = 0; a < k; ++a) {
-        htx[a] += h[a] * x0;
-        for (int b = 0; b < k; ++b) htz[a * k + b] += h[a] * z[b];
-      }
+void add_outer_products(const double* forward, int begin, int end, int columns, int stride,
+                        double* __restrict outer) {
+  constexpr int kRows = 4;
+  int u = begin;
+  for (; u + kRows <= end; u += kRows) {
+    const double* __restrict r0 = forward + static_cast<size_t>(u) * stride;
+    const double* __restrict r1 = r0 + stride;
+    const double* __restrict r2 = r1 + stride;
+    const double* __restrict r3 = r2 + stride;
+    for (int j = 3; j < columns; ++j) {
+      double* __restrict p = outer + (j - 3) * stride;
+      for (int i = 0; i < stride; ++i) p[i] += r0[j] * r0[i] + r1[j] * r1[i] + r2[j] * r2[i] + r3[j] * r3[i];
     }
+  }
+  for (; u < end; ++u) {
+    const double* __restrict r = forward + static_cast<size_t>(u) * stride;
+    for (int j = 3; j < columns; ++j)
+      for (int i = 0; i < stride; ++i) outer[(j - 3) * stride + i] += r[j] * r[i];
+  }
+}
+
+// The first 64-byte boundary in storage, after sizing storage to hold `count` doubles from there.
+double* aligned_start(std::vector<double>& storage, size_t count) {
+  constexpr size_t kLineDoubles = 64 / sizeof(double);
+  storage.resize(count + kLineDoubles);
+  const size_t misalignment = reinterpret_cast<uintptr_t>(storage.data()) / sizeof(double) % kLineDoubles;
+  return storage.data() + (kLineDoubles - misalignment) % kLineDoubles;
 }
 
 }  // namespace
@@ -120,19 +164,18 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
-      scatter_rows_(6 * (set.num_examples + 1)),
-      blended_(buffers.blended),
-      rhs_(buffers.rhs),
-      rhs_before_solve_(buffers.rhs_before_solve),
+      scatter_rows_(2 * L * PoseSystem::padded_width(3 * (set.num_examples + 1))),
+      residual_(buffers.residual),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
-      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L) {
+      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
+      outer_products_(static_cast<size_t>(3 * set.num_examples) *
+                      PoseSystem::padded_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
-  const size_t rhs_size = static_cast<size_t>(system.num_unknowns()) * 3 * (k + 1);
-  rhs_.resize(rhs_size);
-  rhs_before_solve_.resize(rhs_size);
+  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
+                                        PoseSystem::padded_width(3 * (k + 1)));
   coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
-  blended_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
+  residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
@@ -153,19 +196,22 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
 }
 
-void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacobian) {
+void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const int k = set_.num_examples;
   const int m = set_.num_triangles;
-  const int nrhs = 3 * columns;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
-  std::fill(rhs_.begin(), rhs_.begin() + static_cast<size_t>(system_.num_unknowns()) * nrhs, 0.0);
+  std::fill(rhs_, rhs_ + static_cast<size_t>(system_.num_unknowns()) * stride_, 0.0);
   std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
   std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
   jts_.setZero(k);
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+    if (batch + 1 < set_.features.num_batches)
+      prefetch_rows(rhs_, stride_, system_.unknown_of_vertex().data(),
+                    set_.triangles.data() + 3 * static_cast<size_t>(batch + 1) * L,
+                    3 * std::min(L, m - (batch + 1) * L));
     blend_batch(set_.features, space_, weights, batch, out);
-    std::copy(out, out + 6 * L, blended_.data() + static_cast<size_t>(batch) * 6 * L);
+    std::copy(out, out + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
     const int lanes = std::min(L, m - first);
     if (with_jacobian) {
@@ -179,12 +225,13 @@ void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacob
             jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
       }
     }
-    scatter_batch(out, columns, lanes, set_.triangles.data() + 3 * static_cast<size_t>(first),
+    scatter_batch(out, k, with_jacobian, stride_, lanes,
+                  set_.triangles.data() + 3 * static_cast<size_t>(first),
                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_.data());
+                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_);
   }
   for (int u = 0; u < system_.num_unknowns(); ++u)
-    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * nrhs + c * columns] -= coupling_[3 * u + c];
+    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * stride_ + c] -= coupling_[3 * u + c];
   jtj_.resize(k, k);
   for (int a = 0; a < k; ++a) {
     for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
@@ -196,84 +243,91 @@ void PoseEvaluator::assemble(const double* weights, int columns, bool with_jacob
   }
 }
 
-void PoseEvaluator::gather_vertices(int columns, double* vertices) const {
+void PoseEvaluator::gather_vertices(double* vertices) const {
   const std::vector<int>& unknown_of_vertex = system_.unknown_of_vertex();
   const std::vector<int>& handle_of_vertex = system_.handle_of_vertex();
   for (int v = 0; v < set_.num_vertices; ++v) {
     const double* from = set_.rest.data() + 3 * static_cast<size_t>(v);
-    double solved[3];
     if (unknown_of_vertex[v] >= 0) {
-      const double* row = rhs_.data() + static_cast<size_t>(unknown_of_vertex[v]) * 3 * columns;
-      solved[0] = row[0];
-      solved[1] = row[columns];
-      solved[2] = row[2 * columns];
-      from = solved;
+      from = rhs_ + static_cast<size_t>(unknown_of_vertex[v]) * stride_;
     } else if (handle_of_vertex[v] >= 0) {
       from = targets_ + 3 * static_cast<size_t>(handle_of_vertex[v]);
     }
-    std::copy(from, from + 3, vertices + 3 * static_cast<size_t>(v));
+    double* to = vertices + 3 * static_cast<size_t>(v);
+    to[0] = from[0];  // three assignments, not a library call per vertex
+    to[1] = from[1];
+    to[2] = from[2];
   }
 }
 
-double PoseEvaluator::residual_energy(const double* vertices) const {
+double PoseEvaluator::residual_energy(const double* vertices) {
   double energy = 0.0;
-  double residual[6 * L];
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
     const int first = batch * L;
     energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
                              set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                             blended_.data() + static_cast<size_t>(batch) * 6 * L,
-                             std::min(L, set_.num_triangles - first), residual);
+                             std::min(L, set_.num_triangles - first),
+                             residual_.data() + static_cast<size_t>(batch) * 6 * L);
   }
   return energy;
 }
 
 void PoseEvaluator::add_second_order(PoseEvaluation& at) {
+  if (at.evaluation != evaluations_)
+    throw std::logic_error("PoseEvaluator::add_second_order: not the evaluator's last evaluation");
   const int k = set_.num_examples;
   at.second_order.setZero(k, k);
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
-  double residual[6 * L];
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
-    const int first = batch * L;
     blend_batch(set_.features, space_, at.weights.data(), batch, out);
-    batch_residual(at.vertices.data(), set_.triangles.data() + 3 * static_cast<size_t>(first),
-                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first), out,
-                   std::min(L, set_.num_triangles - first), residual);
-    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out, residual,
+    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out,
+                                  residual_.data() + static_cast<size_t>(batch) * 6 * L,
                                   curvature_lanes_.data());
   }
   for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b)
-      for (int l = 0; l < L; ++l)
-        at.second_order(a, b) -= 0.5 * (curvature_lanes_[(a * k + b) * L + l] +
-                                        curvature_lanes_[(b * k + a) * L + l]);
+    for (int b = 0; b <= a; ++b) {
+      double sum = 0.0;
+      for (int l = 0; l < L; ++l) sum += curvature_lanes_[(a * k + b) * L + l];
+      at.second_order(a, b) = at.second_order(b, a) = -sum;
+    }
 }
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   const int k = set_.num_examples;
-  const int columns = with_jacobian ? k + 1 : 1;
-  const int nrhs = 3 * columns;
   const int n_unknowns = system_.num_unknowns();
-  assemble(weights, columns, with_jacobian);
-  const size_t used = static_cast<size_t>(n_unknowns) * nrhs;
-  if (with_jacobian) std::copy(rhs_.begin(), rhs_.begin() + used, rhs_before_solve_.begin());
-  if (n_unknowns > 0) system_.solve(rhs_.data(), nrhs);
+  const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
+  stride_ = PoseSystem::padded_width(nrhs);
+  assemble(weights, with_jacobian);
+  system_.forward_solve(rhs_, stride_, nrhs);
+  // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
+  // the outer products of the forward-solved rows, summed over the coordinates.
+  Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
+  if (with_jacobian) {
+    std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
+    add_outer_products(rhs_, 0, n_unknowns, nrhs, stride_, outer_products_.data());
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < k; ++a) {
+        const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;
+        htx(a) += p[c];
+        for (int b = 0; b < k; ++b) hth(a, b) += p[3 + c * k + b];
+      }
+  }
+  system_.backward_solve(rhs_, stride_, with_jacobian && keep_jacobian_solution_ ? nrhs : 3);
 
   out.weights.assign(weights, weights + k);
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
-  gather_vertices(columns, out.vertices.data());
+  gather_vertices(out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
   out.energy = residual_energy(out.vertices.data()) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
+  out.evaluation = ++evaluations_;
   if (!with_jacobian) return;
 
-  Eigen::MatrixXd htz = Eigen::MatrixXd::Zero(k, k);
-  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
-  schur_products(rhs_before_solve_.data(), rhs_.data(), n_unknowns, k, htz.data(), htx.data());
-  out.schur = jtj_ - 0.5 * (htz + htz.transpose());
+  out.schur = jtj_ - 0.5 * (hth + hth.transpose());
   out.schur.diagonal().array() += regularization_;
   out.step_rhs = htx - jts_ - regularization_ * w;
 }

@@ -2,7 +2,8 @@
 //   E(x, w) = sum_j |Q_j(x) - F_j(w)|^2 + kappa |w|^2      (fourth vertices eliminated)
 // where the handles' rows of x are fixed at their targets. It blends the features, assembles
 // the right-hand sides [G'^T s | G'^T J] of all 3 coordinates (3 (#E + 1) columns, row-major),
-// solves them with the factor in one pass, and forms the Gauss-Newton system for a weight step:
+// runs the factor's forward solve on all of them (H^T K'^{-1} H = (L^{-1} H)^T (L^{-1} H) needs
+// no more) and its backward solve on the 3 columns of x0, and forms the Gauss-Newton system:
 //   S delta = g,  S = J^T J - H^T K'^{-1} H + kappa I,  g = H^T x0 - J^T s - kappa w,
 // with H = G'^T J, s = F(w) - (handles' part of Q) and x0 = K'^{-1} G'^T s (DESIGN.md section 2).
 #pragma once
@@ -26,15 +27,17 @@ struct PoseEvaluation {
   // (zero in the linear space); only once PoseEvaluator::add_second_order has run.
   Eigen::MatrixXd second_order;
   bool has_second_order = false;
+  unsigned long evaluation = 0;  // its number among its evaluator's evaluations (from 1)
 };
 
 // The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
-  std::vector<double> coupling;          // #unknowns by 3: K_fh x_h
-  std::vector<double> blended;           // #batches by 6 by kLanes: F_j(w)
-  std::vector<double> rhs;               // #unknowns by 3 (#E + 1)
-  std::vector<double> rhs_before_solve;  // copy of rhs (H = G'^T J is needed after the solve)
+  std::vector<double> coupling;  // #unknowns by 3: K_fh x_h
+  std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
+  // #unknowns rows of PoseSystem::padded_width(3 (#E + 1)) doubles, from the first 64-byte
+  // boundary: the right-hand sides, then their solution (layout: PoseEvaluator's rhs_).
+  std::vector<double> rhs;
 };
 
 class PoseEvaluator {
@@ -49,18 +52,28 @@ class PoseEvaluator {
   // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
 
-  // Fills at.second_order for a pose this evaluator evaluated (one more pass over the triangles,
-  // re-blending them; only worth it when a step is taken from `at`).
+  // Makes later evaluations with the Jacobian also finish the solve of its columns, for
+  // jacobian_solution() (the Gauss-Newton system itself needs only their forward half).
+  void keep_jacobian_solution() { keep_jacobian_solution_ = true; }
+  // After such an evaluation: #E values of Z = K'^{-1} G'^T J for unknown u, coordinate c.
+  const double* jacobian_solution(int unknown, int c) const {
+    return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * set_.num_examples;
+  }
+
+  // Fills at.second_order for the pose this evaluator evaluated last (one more pass over the
+  // triangles, re-blending them and reusing that evaluation's residuals; only worth it when a
+  // step is taken from `at`). Throws std::logic_error for any other pose.
   void add_second_order(PoseEvaluation& at);
 
  private:
   // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
-  // G'^T F and G'^T J into rhs_ (columns per coordinate: `columns`).
-  void assemble(const double* weights, int columns, bool with_jacobian);
+  // G'^T s and G'^T J into rhs_ (rows of stride_ doubles).
+  void assemble(const double* weights, bool with_jacobian);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
-  void gather_vertices(int columns, double* vertices) const;
-  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble().
-  double residual_energy(const double* vertices) const;
+  void gather_vertices(double* vertices) const;
+  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble(); replaces F
+  // by those residuals in residual_.
+  double residual_energy(const double* vertices);
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
@@ -71,13 +84,19 @@ class PoseEvaluator {
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
-  std::vector<double> scatter_rows_;     // 2 by 3 (#E + 1): one triangle's blocks, by column
-  std::vector<double>& blended_;         // buffers' blended
-  std::vector<double>& rhs_;             // buffers' rhs
-  std::vector<double>& rhs_before_solve_;
+  std::vector<double> scatter_rows_;     // kLanes by 2 by stride_: a batch's blocks, by column
+  std::vector<double>& residual_;        // buffers' residual
+  unsigned long evaluations_ = 0;        // evaluations so far
+  // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
+  // coordinates of G'^T s, then with the Jacobian coordinate c's #E columns of G'^T J at
+  // 3 + c #E + a; solved in place (x0 in the first 3 columns).
+  double* rhs_ = nullptr;
+  int stride_ = 0;  // of the last evaluation: padded_width(3) or padded_width(3 (#E + 1))
+  bool keep_jacobian_solution_ = false;
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
   std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane
+  std::vector<double> outer_products_;   // 3 #E by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
   Eigen::MatrixXd jtj_;                  // #E by #E
   Eigen::VectorXd jts_;                  // #E: J^T s
 };

@@ -69,7 +69,18 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +
                      e.what());
   }
+  number_unknowns_in_factor_order();
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
+}
+
+void PoseSystem::number_unknowns_in_factor_order() {
+  if (num_unknowns_ == 0) return;
+  const std::vector<int>& perm = factor_.permutation();
+  std::vector<int> row_of_unknown(num_unknowns_);
+  for (int row = 0; row < num_unknowns_; ++row) row_of_unknown[perm[row]] = row;
+  for (int& u : unknown_of_vertex_)
+    if (u >= 0) u = row_of_unknown[u];
+  for (int& u : coupling_row_) u = row_of_unknown[u];
 }
 
 void PoseSystem::handle_coupling(const double* targets, double* out) const {

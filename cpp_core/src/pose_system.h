@@ -2,7 +2,9 @@
 // vertices eliminated, handles' columns removed), the coupling K_fh that moves the handles'
 // contribution to the right-hand side, and the maps between vertices and unknowns.
 //
-// Built once per handle set; moving the handles only changes right-hand sides.
+// Built once per handle set; moving the handles only changes right-hand sides. The unknowns are
+// numbered in the factor's row order, so right-hand sides are solved in place, without a
+// permuted copy.
 #pragma once
 
 #include <vector>
@@ -41,12 +43,23 @@ class PoseSystem {
   const std::vector<int>& coupling_row() const { return coupling_row_; }
   const std::vector<double>& coupling_value() const { return coupling_value_; }
 
-  // Solves K' X = B in place; b: #unknowns by nrhs row-major.
-  void solve(double* b, int nrhs) const { factor_.solve(b, nrhs); }
+  // The in-place halves of the solve with K' = L L^T (unknowns already in the factor's order):
+  // x is #unknowns rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
+  // whole vectors) of every row are overwritten with L^{-1} x (forward) or L^{-T} x (backward).
+  static int padded_width(int nrhs) { return SparseCholesky::padded_width(nrhs); }
+  void forward_solve(double* x, int stride, int columns) const {
+    if (num_unknowns_ > 0) factor_.forward_solve_in_order(x, stride, columns);
+  }
+  void backward_solve(double* x, int stride, int columns) const {
+    if (num_unknowns_ > 0) factor_.backward_solve_in_order(x, stride, columns);
+  }
 
   long long factor_nonzeros() const { return factor_.factor_nonzeros(); }
 
  private:
+  // Renumbers unknown_of_vertex_ and coupling_row_ in the factor's row order (after factoring).
+  void number_unknowns_in_factor_order();
+
   std::vector<int> handles_;
   std::vector<int> handle_of_vertex_;
   std::vector<int> unknown_of_vertex_;

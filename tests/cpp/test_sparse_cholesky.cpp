@@ -253,3 +253,50 @@ TEST(SparseCholesky, FactorizeRejectsAnotherPattern) {
   EXPECT_THROW(chol.factorize(grid_laplacian(5, 6, 1.0)), std::invalid_argument);
   EXPECT_THROW(chol.factorize(lower_from_dense(random_spd(25, 0.3, 1))), std::invalid_argument);
 }
+
+TEST(SparseCholesky, InOrderHalvesMatchSolveAndGiveProductsWithTheInverse) {
+  const CscMatrix a = grid_laplacian(23, 19, 0.1);
+  SparseCholesky chol;
+  chol.compute(a);
+  const int n = a.rows;
+  const int nrhs = 15;
+  const int stride = SparseCholesky::padded_width(nrhs);
+  ASSERT_GE(stride, nrhs);
+  const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 41);
+  std::vector<double> expected = b;
+  chol.solve(expected.data(), nrhs);
+  // b in the factor's row order, padded rows.
+  const std::vector<int>& perm = chol.permutation();
+  std::vector<double> x(static_cast<size_t>(n) * stride, 0.0);
+  for (int row = 0; row < n; ++row)
+    for (int c = 0; c < nrhs; ++c)
+      x[static_cast<size_t>(row) * stride + c] = b[static_cast<size_t>(perm[row]) * nrhs + c];
+  chol.forward_solve_in_order(x.data(), stride, nrhs);
+  // b_0^T A^{-1} b_c from the forward half alone.
+  for (int c = 0; c < nrhs; ++c) {
+    double from_forward = 0.0, from_solve = 0.0;
+    for (int row = 0; row < n; ++row) {
+      from_forward += x[static_cast<size_t>(row) * stride] * x[static_cast<size_t>(row) * stride + c];
+      from_solve += b[static_cast<size_t>(row) * nrhs] * expected[static_cast<size_t>(row) * nrhs + c];
+    }
+    EXPECT_NEAR(from_forward, from_solve, 1e-10 * (1.0 + std::abs(from_solve))) << "column " << c;
+  }
+  // The backward half on the first columns only: those equal solve(), the columns beyond its
+  // whole vectors stay forward-solved.
+  const std::vector<double> forward = x;
+  chol.backward_solve_in_order(x.data(), stride, 3);
+  const int touched = SparseCholesky::padded_width(3);
+  for (int row = 0; row < n; ++row)
+    for (int c = 0; c < nrhs; ++c) {
+      const size_t at = static_cast<size_t>(row) * stride + c;
+      if (c < 3)
+        ASSERT_NEAR(x[at], expected[static_cast<size_t>(perm[row]) * nrhs + c], 1e-12 * (1 + std::abs(x[at])))
+            << "row " << row << " column " << c;
+      else if (c >= touched)
+        ASSERT_EQ(x[at], forward[at]) << "row " << row << " column " << c;
+    }
+  EXPECT_THROW(chol.forward_solve_in_order(x.data(), stride + 1, nrhs), std::invalid_argument);
+  EXPECT_THROW(chol.backward_solve_in_order(x.data(), stride, stride + 1), std::invalid_argument);
+  SparseCholesky unfactored;
+  EXPECT_THROW(unfactored.forward_solve_in_order(x.data(), stride, nrhs), std::logic_error);
+}

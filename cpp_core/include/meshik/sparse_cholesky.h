@@ -64,6 +64,22 @@ class SparseCholesky {
   // std::logic_error without a successful factorize().
   void solve(double* b, int nrhs) const;
 
+  // The factor's row order: its row k is unknown permutation()[k] (n entries).
+  const std::vector<int>& permutation() const;
+  // The row width the in-order solves need for nrhs right-hand sides (nrhs rounded up to whole
+  // SIMD vectors).
+  static int padded_width(int nrhs);
+  // The two halves of solve() for callers that keep their right-hand sides in the factor's row
+  // order, so no permuted copy is made: x is n rows of `stride` doubles (stride = padded_width(m)
+  // for some m; rows starting on 64-byte boundaries are fastest), row k holding unknown
+  // permutation()[k]. Only columns [0, padded_width(columns)) are overwritten (columns <= stride),
+  // with L^{-1} x (forward) or L^{-T} x (backward), where A = P^T L L^T P. Since
+  // B^T A^{-1} C = (L^{-1} P B)^T (L^{-1} P C), products with A^{-1} need only the forward half.
+  // Throw std::logic_error without a successful factorize(), std::invalid_argument for a bad
+  // stride or column count.
+  void forward_solve_in_order(double* x, int stride, int columns) const;
+  void backward_solve_in_order(double* x, int stride, int columns) const;
+
   int size() const;
   long long factor_nonzeros() const;  // nnz(L), diagonal included
 

@@ -22,6 +22,20 @@ struct SparseCholesky::Impl {
   bool factorized = false;
 };
 
+namespace {
+
+// Throws unless a factorization is available (factorized) and (stride, columns) suit the
+// in-order solves.
+void check_in_order_arguments(bool factorized, int stride, int columns) {
+  if (!factorized) throw std::logic_error("SparseCholesky: solve without a successful factorize()");
+  if (stride % kLanes != 0 || columns < 0 || columns > stride)
+    throw std::invalid_argument("SparseCholesky: in-order solve with stride " + std::to_string(stride) +
+                                " and columns " + std::to_string(columns) +
+                                " (need stride = padded_width(m) and 0 <= columns <= stride)");
+}
+
+}  // namespace
+
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
@@ -77,13 +91,27 @@ void SparseCholesky::solve(double* b, int nrhs) const {
     for (int c = 0; c < nrhs; ++c) to[c] = from[c];
     for (int c = nrhs; c < stride; ++c) to[c] = 0.0;
   }
-  forward_solve(s.analysis, s.factor, x, stride);
-  backward_solve(s.analysis, s.factor, x, stride);
+  forward_solve(s.analysis, s.factor, x, stride, stride);
+  backward_solve(s.analysis, s.factor, x, stride, stride);
   for (int k = 0; k < n; ++k) {
     const double* from = x + static_cast<size_t>(k) * stride;
     double* to = b + perm[k] * width;
     for (int c = 0; c < nrhs; ++c) to[c] = from[c];
   }
+}
+
+const std::vector<int>& SparseCholesky::permutation() const { return impl_->analysis.perm; }
+
+int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
+
+void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns) const {
+  check_in_order_arguments(impl_->factorized, stride, columns);
+  forward_solve(impl_->analysis, impl_->factor, x, stride, columns);
+}
+
+void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns) const {
+  check_in_order_arguments(impl_->factorized, stride, columns);
+  backward_solve(impl_->analysis, impl_->factor, x, stride, columns);
 }
 
 int SparseCholesky::size() const { return static_cast<int>(impl_->analysis.perm.size()); }

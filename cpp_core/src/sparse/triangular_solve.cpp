@@ -220,23 +220,27 @@ struct Backward {
   }
 };
 
-// Runs Pass on chunks of at most kMaxVectors vectors covering the stride.
+// Runs Pass on chunks of at most kMaxVectors vectors covering the first `columns` (rounded up to
+// whole vectors) of each row.
 template <template <int> class Pass>
-void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int stride) {
-  for (int c0 = 0; c0 < stride; c0 += kMaxVectors * kLanes) {
-    const int vectors = (stride - c0) / kLanes < kMaxVectors ? (stride - c0) / kLanes : kMaxVectors;
+void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int stride, int columns) {
+  const int width = round_up_to_lanes(columns);
+  for (int c0 = 0; c0 < width; c0 += kMaxVectors * kLanes) {
+    const int vectors = (width - c0) / kLanes < kMaxVectors ? (width - c0) / kLanes : kMaxVectors;
     Pass<kMaxVectors>::dispatch(vectors, a, factor, x + c0, stride);
   }
 }
 
 }  // namespace
 
-void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
-  by_chunks<Forward>(analysis, factor, x, stride);
+void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
+                   int columns) {
+  by_chunks<Forward>(analysis, factor, x, stride, columns);
 }
 
-void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride) {
-  by_chunks<Backward>(analysis, factor, x, stride);
+void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
+                    int columns) {
+  by_chunks<Backward>(analysis, factor, x, stride, columns);
 }
 
 }  // namespace meshik::sparse

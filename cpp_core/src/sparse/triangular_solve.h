@@ -8,10 +8,13 @@
 namespace meshik::sparse {
 
 // x: n rows of `stride` doubles (stride a multiple of kLanes, see simd.h), in the factor's
-// (permuted) order; every column of x is a right-hand side. Overwrites x with L^{-1} x.
-void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride);
+// (permuted) order; every column of x is a right-hand side. Overwrites the first `columns`
+// (<= stride) columns of x, rounded up to whole vectors, with L^{-1} x; the others are untouched.
+void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
+                   int columns);
 
-// As forward_solve, overwrites x with L^{-T} x.
-void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride);
+// As forward_solve, with L^{-T} x.
+void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
+                    int columns);
 
 }  // namespace meshik::sparse
