@@ -174,8 +174,13 @@ void forward_chunk(const Analysis& analysis, const FactorValues& factor, double*
     const double* block = values + f.value_start[s];
     double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
     diagonal_forward<V>(block, k, r, xs, stride);
-    int i = k;
-    for (; i + kGroup <= r; i += kGroup) update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
+    int i = k;  // rows below in groups of 2 kGroup (each x_s row loaded once per group), then kGroup
+    for (; i + 2 * kGroup <= r; i += 2 * kGroup)
+      update_rows_below<V, 2 * kGroup>(block, k, r, i, rows, xs, x, stride);
+    if (i + kGroup <= r) {
+      update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
+      i += kGroup;
+    }
     update_last_rows_below<V>(r - i, block, k, r, i, rows, xs, x, stride);
   }
 }
