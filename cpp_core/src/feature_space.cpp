@@ -70,6 +70,9 @@ namespace {
 
 constexpr int L = kLanes;
 
+// How many batches ahead the blend asks for features (best of 2, 4 and 8 on the elephant).
+constexpr int kPrefetchDistance = 4;
+
 // The rotation of a nonlinear blend for one batch: phi = sum_i w_i phi_i, its Rodrigues
 // coefficients and R = exp(phi) (row-major), per lane.
 struct BatchRotation {
@@ -150,11 +153,12 @@ MESHIK_LANE_INLINE void column_cross_sum(const double* m, const double* res, dou
   }
 }
 
-// Asks the cache for `count` doubles from p (the next batch's features: the hardware prefetcher
-// alone leaves the blend waiting on memory).
+// Asks the L2 cache for `count` doubles from p (a later batch's features: the hardware prefetcher
+// alone leaves the blend waiting on memory). Not into L1: there, a whole batch's lines at once
+// fill the miss buffers and stall the blend (measured on the elephant).
 MESHIK_LANE_INLINE void prefetch_doubles(const double* p, size_t count) {
   constexpr size_t kLineDoubles = 64 / sizeof(double);
-  for (size_t e = 0; e < count; e += kLineDoubles) __builtin_prefetch(p + e);
+  for (size_t e = 0; e < count; e += kLineDoubles) __builtin_prefetch(p + e, 0, 2);
 }
 
 MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], int l) {
@@ -179,9 +183,9 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
     return;
   }
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  if (batch + 1 < features.num_batches) {
-    prefetch_doubles(feature + k * 9 * L, static_cast<size_t>(k) * 9 * L);
-    prefetch_doubles(basis + 6 * L, 6 * L);
+  if (batch + kPrefetchDistance < features.num_batches) {
+    prefetch_doubles(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
+    prefetch_doubles(basis + kPrefetchDistance * 6 * L, 6 * L);
   }
   BatchRotation r;
   blend_rotation(feature, w, k, r);

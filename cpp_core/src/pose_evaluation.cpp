@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 #include "feature_space.h"
@@ -40,9 +41,10 @@ void accumulate_jacobian_products(const double* __restrict out, int k, double* _
   }
 }
 
-// Asks the cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
+// Asks the L2 cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
 // (vertices) will update, ahead of the scatter: the unknowns are in the factor's order, so
-// neighbouring triangles' rows are far apart.
+// neighbouring triangles' rows are far apart. (A read hint into L2 measured faster than a write
+// hint into L1, which competes with the features' stream.)
 void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, const int* corners,
                    int count) {
   constexpr int kLineDoubles = 64 / sizeof(double);
@@ -50,44 +52,73 @@ void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, 
     const int u = unknown_of_vertex[corners[i]];
     if (u < 0) continue;
     const double* row = rhs + static_cast<size_t>(u) * stride;
-    for (int e = 0; e < stride; e += kLineDoubles) __builtin_prefetch(row + e, 1);
+    for (int e = 0; e < stride; e += kLineDoubles) __builtin_prefetch(row + e, 0, 2);
+  }
+}
+
+// One row of a batch's output block: kLanes values, one per triangle (GCC / Clang vector extension).
+typedef double LaneRow __attribute__((vector_size(L * sizeof(double))));
+static_assert(L == 8, "transpose_rows is written for batches of 8 triangles");
+
+MESHIK_LANE_INLINE LaneRow load_row(const double* p) {
+  LaneRow v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// In place: row i, lane l becomes row l, lane i (an 8 by 8 transpose in registers: three rounds
+// of two-input shuffles, no trip through memory).
+MESHIK_LANE_INLINE void transpose_rows(LaneRow (&r)[L]) {
+  typedef long long Index __attribute__((vector_size(L * sizeof(long long))));
+  constexpr Index kEvenPairs = {0, 8, 2, 10, 4, 12, 6, 14}, kOddPairs = {1, 9, 3, 11, 5, 13, 7, 15};
+  constexpr Index kLowQuads = {0, 1, 8, 9, 4, 5, 12, 13}, kHighQuads = {2, 3, 10, 11, 6, 7, 14, 15};
+  constexpr Index kLowHalves = {0, 1, 2, 3, 8, 9, 10, 11}, kHighHalves = {4, 5, 6, 7, 12, 13, 14, 15};
+  LaneRow a[L], b[L];
+  for (int i = 0; i < L; i += 2) {
+    a[i] = __builtin_shuffle(r[i], r[i + 1], kEvenPairs);
+    a[i + 1] = __builtin_shuffle(r[i], r[i + 1], kOddPairs);
+  }
+  for (int i = 0; i < L; i += 4)
+    for (int j = 0; j < 2; ++j) {
+      b[i + j] = __builtin_shuffle(a[i + j], a[i + j + 2], kLowQuads);
+      b[i + j + 2] = __builtin_shuffle(a[i + j], a[i + j + 2], kHighQuads);
+    }
+  for (int j = 0; j < 4; ++j) {
+    r[j] = __builtin_shuffle(b[j], b[j + 4], kLowHalves);
+    r[j + 4] = __builtin_shuffle(b[j], b[j + 4], kHighHalves);
   }
 }
 
 // G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
-// row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_): block 0 (F) and, with
-// the Jacobian, blocks 1 .. k (dF/dw) of out. lanes: triangles in the batch; triangles (lanes by 3)
-// and gradient (lanes by 6): the batch's; by_lane: scratch of kLanes by 2 by stride doubles.
-// All lanes are transposed before any row is updated, so the vector loads of the transposed
-// values do not wait on the scalar stores that wrote them.
+// row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_). out: blend_batch's output;
+// source: `stride` entries, the row of out (a multiple of 6, that block's first row, whose next
+// row holds the second column) that each column of rhs takes, or -1 for a padding column;
+// lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's.
+// Eight columns at a time, the batch's rows are transposed in registers, so that each triangle's
+// values are one vector per column block.
 MESHIK_SIMD_CLONES
-void scatter_batch(const double* out, int k, bool with_jacobian, int stride, int lanes,
-                   const int* triangles, const double* gradient, const int* unknown_of_vertex,
-                   double* by_lane, double* rhs) {
-  std::fill(by_lane, by_lane + 2 * stride * L, 0.0);
-  const int blocks = with_jacobian ? k : 0;
-  for (int l = 0; l < lanes; ++l) {
-    double* first = by_lane + 2 * stride * l;
-    double* second = first + stride;
-    for (int c = 0; c < 3; ++c) {
-      first[c] = out[(2 * c) * L + l];
-      second[c] = out[(2 * c + 1) * L + l];
-      for (int a = 0; a < blocks; ++a) {
-        first[3 + c * k + a] = out[((a + 1) * 6 + 2 * c) * L + l];
-        second[3 + c * k + a] = out[((a + 1) * 6 + 2 * c + 1) * L + l];
+void scatter_batch(const double* out, const int* source, int stride, int lanes, const int* triangles,
+                   const double* gradient, const int* unknown_of_vertex, double* rhs) {
+  int rows[3 * L];
+  for (int e = 0; e < 3 * lanes; ++e) rows[e] = unknown_of_vertex[triangles[e]];
+  for (int block = 0; block < stride; block += L) {
+    LaneRow first[L], second[L];
+    for (int i = 0; i < L; ++i) {
+      const int e = source[block + i];
+      first[i] = e < 0 ? LaneRow{} : load_row(out + e * L);
+      second[i] = e < 0 ? LaneRow{} : load_row(out + (e + 1) * L);
+    }
+    transpose_rows(first);
+    transpose_rows(second);
+    for (int l = 0; l < lanes; ++l)
+      for (int q = 0; q < 3; ++q) {
+        const int u = rows[3 * l + q];
+        if (u < 0) continue;
+        double* row = rhs + static_cast<size_t>(u) * stride + block;
+        const LaneRow update = gradient[6 * l + 2 * q] * first[l] + gradient[6 * l + 2 * q + 1] * second[l];
+        const LaneRow sum = load_row(row) + update;
+        std::memcpy(row, &sum, sizeof sum);
       }
-    }
-  }
-  for (int l = 0; l < lanes; ++l) {
-    const double* first = by_lane + 2 * stride * l;
-    const double* second = first + stride;
-    for (int q = 0; q < 3; ++q) {
-      const int u = unknown_of_vertex[triangles[3 * l + q]];
-      if (u < 0) continue;
-      const double g0 = gradient[6 * l + 2 * q], g1 = gradient[6 * l + 2 * q + 1];
-      double* row = rhs + static_cast<size_t>(u) * stride;
-      for (int i = 0; i < stride; ++i) row[i] += g0 * first[i] + g1 * second[i];
-    }
   }
 }
 
@@ -142,6 +173,18 @@ void add_outer_products(const double* forward, int begin, int end, int columns, 
   }
 }
 
+// For each of the `stride` columns of a row of rhs (PoseEvaluator::rhs_ with or without the
+// Jacobian, #E = k): the row of blend_batch's output block that it takes (the first of the two
+// columns of F or of dF/dw_a for coordinate c), or -1 for a padding column.
+std::vector<int> column_sources(int k, bool with_jacobian, int stride) {
+  std::vector<int> source(stride, -1);
+  for (int c = 0; c < 3; ++c) {
+    source[c] = 2 * c;
+    for (int a = 0; with_jacobian && a < k; ++a) source[3 + c * k + a] = (a + 1) * 6 + 2 * c;
+  }
+  return source;
+}
+
 // The first 64-byte boundary in storage, after sizing storage to hold `count` doubles from there.
 double* aligned_start(std::vector<double>& storage, size_t count) {
   constexpr size_t kLineDoubles = 64 / sizeof(double);
@@ -164,7 +207,6 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(blend_batch_size(set.num_examples)),
-      scatter_rows_(2 * L * PoseSystem::padded_width(3 * (set.num_examples + 1))),
       residual_(buffers.residual),
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
@@ -200,10 +242,16 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const int k = set_.num_examples;
   const int m = set_.num_triangles;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
-  std::fill(rhs_, rhs_ + static_cast<size_t>(system_.num_unknowns()) * stride_, 0.0);
+  // Every row starts as -K_fh x_h in its first 3 columns and zero in the others.
+  for (int u = 0; u < system_.num_unknowns(); ++u) {
+    double* row = rhs_ + static_cast<size_t>(u) * stride_;
+    for (int c = 0; c < 3; ++c) row[c] = -coupling_[3 * u + c];
+    std::fill(row + 3, row + stride_, 0.0);
+  }
   std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
   std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
   jts_.setZero(k);
+  const std::vector<int> source = column_sources(k, with_jacobian, stride_);
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
     if (batch + 1 < set_.features.num_batches)
@@ -225,13 +273,10 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
             jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
       }
     }
-    scatter_batch(out, k, with_jacobian, stride_, lanes,
-                  set_.triangles.data() + 3 * static_cast<size_t>(first),
+    scatter_batch(out, source.data(), stride_, lanes, set_.triangles.data() + 3 * static_cast<size_t>(first),
                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                  system_.unknown_of_vertex().data(), scatter_rows_.data(), rhs_);
+                  system_.unknown_of_vertex().data(), rhs_);
   }
-  for (int u = 0; u < system_.num_unknowns(); ++u)
-    for (int c = 0; c < 3; ++c) rhs_[static_cast<size_t>(u) * stride_ + c] -= coupling_[3 * u + c];
   jtj_.resize(k, k);
   for (int a = 0; a < k; ++a) {
     for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];

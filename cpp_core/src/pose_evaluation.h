@@ -84,7 +84,6 @@ class PoseEvaluator {
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
-  std::vector<double> scatter_rows_;     // kLanes by 2 by stride_: a batch's blocks, by column
   std::vector<double>& residual_;        // buffers' residual
   unsigned long evaluations_ = 0;        // evaluations so far
   // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
