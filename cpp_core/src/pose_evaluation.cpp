@@ -91,7 +91,7 @@ MESHIK_LANE_INLINE void transpose_rows(LaneRow (&r)[L]) {
 
 // G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
 // row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_). out: blend_batch's output;
-// source: `stride` entries, the row of out (a multiple of 6, that block's first row, whose next
+// stride: a multiple of kLanes; source: `stride` entries, the row of out (a multiple of 6, that block's first row, whose next
 // row holds the second column) that each column of rhs takes, or -1 for a padding column;
 // lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's.
 // Eight columns at a time, the batch's rows are transposed in registers, so that each triangle's
@@ -173,6 +173,10 @@ void add_outer_products(const double* forward, int begin, int end, int columns, 
   }
 }
 
+// The row width of rhs for `nrhs` columns: whole blocks of kLanes (8) columns, as scatter_batch
+// needs, and a stride the solves accept (padded_width of a multiple of 8 is that multiple).
+int row_width(int nrhs) { return PoseSystem::padded_width((nrhs + L - 1) / L * L); }
+
 // For each of the `stride` columns of a row of rhs (PoseEvaluator::rhs_ with or without the
 // Jacobian, #E = k): the row of blend_batch's output block that it takes (the first of the two
 // columns of F or of dF/dw_a for coordinate c), or -1 for a padding column.
@@ -212,10 +216,10 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
       curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       outer_products_(static_cast<size_t>(3 * set.num_examples) *
-                      PoseSystem::padded_width(3 * (set.num_examples + 1))) {
+                      row_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
-                                        PoseSystem::padded_width(3 * (k + 1)));
+                                        row_width(3 * (k + 1)));
   coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
   residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
@@ -344,7 +348,7 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   const int k = set_.num_examples;
   const int n_unknowns = system_.num_unknowns();
   const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
-  stride_ = PoseSystem::padded_width(nrhs);
+  stride_ = row_width(nrhs);
   assemble(weights, with_jacobian);
   system_.forward_solve(rhs_, stride_, nrhs);
   // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of

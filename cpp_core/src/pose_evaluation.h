@@ -35,7 +35,7 @@ struct PoseEvaluation {
 struct EvaluationBuffers {
   std::vector<double> coupling;  // #unknowns by 3: K_fh x_h
   std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
-  // #unknowns rows of PoseSystem::padded_width(3 (#E + 1)) doubles, from the first 64-byte
+  // #unknowns rows of 3 (#E + 1) doubles rounded up to whole blocks of kLanes, from the first 64-byte
   // boundary: the right-hand sides, then their solution (layout: PoseEvaluator's rhs_).
   std::vector<double> rhs;
 };
@@ -90,7 +90,7 @@ class PoseEvaluator {
   // coordinates of G'^T s, then with the Jacobian coordinate c's #E columns of G'^T J at
   // 3 + c #E + a; solved in place (x0 in the first 3 columns).
   double* rhs_ = nullptr;
-  int stride_ = 0;  // of the last evaluation: padded_width(3) or padded_width(3 (#E + 1))
+  int stride_ = 0;  // of the last evaluation: 3 or 3 (#E + 1) columns rounded up to kLanes
   bool keep_jacobian_solution_ = false;
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
