@@ -5,10 +5,11 @@ ROOT := $(abspath .)
 PY := $(ROOT)/.venv/bin/python
 BUILD := build
 BUILD_ASAN := build-asan
+BUILD_PORTABLE := build-portable
 JOBS ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all setup build test test-cpp test-asan test-python demo bench plugin gui-check clean
+.PHONY: all setup build test test-cpp test-asan test-portable test-python demo bench plugin gui-check clean
 
 all: build
 
@@ -34,10 +35,20 @@ test-asan: setup $(BUILD_ASAN)/build.ninja
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS)
 
+# The core as a portable binary (MESHIK_NATIVE_ARCH=OFF: SSE2 baseline, batch loops picked at
+# load time), the build the plugin README recommends for sharing: its own vector widths differ.
+$(BUILD_PORTABLE)/build.ninja: | setup
+	cmake -S . -B $(BUILD_PORTABLE) -G Ninja -DMESHIK_NATIVE_ARCH=OFF \
+	  -DMESHIK_BUILD_PYTHON=OFF -DMESHIK_BUILD_PLUGIN=OFF -DMESHIK_BUILD_BENCH=OFF
+
+test-portable: setup $(BUILD_PORTABLE)/build.ninja
+	cmake --build $(BUILD_PORTABLE) -j $(JOBS)
+	ctest --test-dir $(BUILD_PORTABLE) --output-on-failure -j $(JOBS)
+
 test-python: build
 	$(PY) -m pytest -q tests/python
 
-test: test-cpp test-asan test-python
+test: test-cpp test-asan test-portable test-python
 
 demo: build
 	$(PY) -m meshik.demo --out demo_output
@@ -55,4 +66,4 @@ gui-check: setup $(BUILD)/build.ninja
 	BUILD=$(abspath $(BUILD)) JOBS=$(JOBS) scripts/gui_check.sh $(PRECISION)
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) demo_output
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_PORTABLE) demo_output
