@@ -73,6 +73,11 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
           .arg(result.iterations)
           .arg(result.converged ? " (converged)" : "")
           .arg(result.residual, 0, 'g', 6));
+  if (!result.inverted_triangles.empty())
+    log(QStringLiteral("MeshIK pose: %1 faces turned over against their blended deformation (the first: "
+                       "face %2); the handles ask for more than the examples can follow there")
+            .arg(result.inverted_triangles.size())
+            .arg(result.inverted_triangles.front()));
   log(QStringLiteral("MeshIK pose: written to %1; precompute %2 ms, factorization %3 (%4 ms), solve %5 ms")
           .arg(output.label())
           .arg(precompute_ms)
@@ -83,7 +88,8 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   Eigen::VectorXd weights = Eigen::Map<const Eigen::VectorXd>(result.weights.data(), result.weights.size());
   return {{"weights", QVariant::fromValue(weights)},  {"iterations", QVariant(result.iterations)},
           {"residual", QVariant(result.residual)},    {"converged", QVariant(result.converged)},
-          {"factorization_reused", QVariant(reused)}, {"layer_id", QVariant(output.id())}};
+          {"factorization_reused", QVariant(reused)}, {"layer_id", QVariant(output.id())},
+          {"inverted_triangles", QVariant(static_cast<int>(result.inverted_triangles.size()))}};
 }
 
 }  // namespace meshik::plugin

@@ -19,7 +19,8 @@ RichParameterList poseParameters(const MeshDocument& document);
 
 // Runs the filter. Returns the values pymeshlab hands to Python:
 //   "weights" (Eigen::VectorXd, #E), "iterations" (int), "residual" (double),
-//   "converged" (bool), "factorization_reused" (bool), "layer_id" (int, the pose's layer).
+//   "converged" (bool), "factorization_reused" (bool), "layer_id" (int, the pose's layer),
+//   "inverted_triangles" (int: faces the pose turns over against their blended deformation).
 // Throws MLException (or the core's exceptions) on bad input.
 std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, MeshDocument& document,
                                           vcg::CallBackPos* callback, SolverCache& cache, const Logger& log);

@@ -87,6 +87,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.triangles.reserve(3 * static_cast<size_t>(rest.num_triangles));
   for (int j : order.triangle_order)
     for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
+  impl.triangle_of_internal = std::move(order.triangle_order);
   std::vector<std::vector<double>> internal_examples;
   std::vector<const double*> example_pointers;
   for (const double* e : examples) {

@@ -25,6 +25,7 @@ struct ExampleSet::Impl {
   int num_examples = 0;
   std::vector<int> vertex_of_internal;  // #V: the user's index of each internal vertex
   std::vector<int> internal_of_vertex;  // #V: the internal index of each user vertex
+  std::vector<int> triangle_of_internal;  // #F: the user's index of each internal triangle
   std::vector<double> rest;    // #V by 3, internal order
   std::vector<int> triangles;  // #F by 3 internal vertex indices, internal triangle order
   VertexComponents components;

@@ -65,6 +65,7 @@ SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_tri
   result.vertices = std::move(current.vertices);
   result.weights = std::move(current.weights);
   result.residual = current.energy;
+  result.inverted_triangles = std::move(current.inverted_triangles);
   return result;
 }
 

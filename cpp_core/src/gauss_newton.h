@@ -21,7 +21,7 @@ namespace meshik {
 // energy's rounding-noise level); initial_weights: #E values or nullptr for w = 0.
 // Stops (converged) when the Gauss-Newton model predicts, or an interior step achieves, a relative
 // decrease of at most options.tolerance (or only rounding noise); or after options.max_iterations
-// evaluations.
+// evaluations. The result's vertices and inverted_triangles are in the evaluator's internal order.
 SolveResult gauss_newton(PoseEvaluator& evaluator, int num_examples, int num_triangles,
                          const double* initial_weights, const SolverOptions& options,
                          const ProgressCallback& progress);

@@ -123,28 +123,47 @@ void scatter_batch(const double* out, const int* source, int stride, int lanes, 
 }
 
 // Replaces F_j by R_j = Q_j(x) - F_j in `terms` (the batch's 6 rows of kLanes) for its `lanes`
-// triangles, zeroing the padding lanes; returns sum |R_j|^2. vertices: #V by 3; triangles /
+// triangles, zeroing the padding lanes; returns sum |R_j|^2, and in *inverted bit l set when
+// triangle l is turned over against its target: the normal of the posed triangle, Q_j's column 1
+// x column 2, points away from F_j's (negative dot product). vertices: #V by 3; triangles /
 // gradient: the batch's first triangle's entries.
 MESHIK_SIMD_CLONES
 double batch_residual(const double* vertices, const int* triangles, const double* gradient,
-                      int lanes, double* terms) {
+                      int lanes, double* terms, unsigned* inverted) {
+  double posed[6][L] = {};  // Q_j, rows as in terms
   for (int l = 0; l < lanes; ++l) {
     const double* g = gradient + 6 * l;
     const double* x0 = vertices + 3 * static_cast<size_t>(triangles[3 * l]);
     const double* x1 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 1]);
     const double* x2 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 2]);
     for (int c = 0; c < 3; ++c) {
-      double* r0 = terms + (2 * c) * L + l;
-      double* r1 = terms + (2 * c + 1) * L + l;
-      *r0 = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4] - *r0;
-      *r1 = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5] - *r1;
+      posed[2 * c][l] = x0[c] * g[0] + x1[c] * g[2] + x2[c] * g[4];
+      posed[2 * c + 1][l] = x0[c] * g[1] + x1[c] * g[3] + x2[c] * g[5];
     }
   }
   if (lanes < L)  // only the last batch
     for (int e = 0; e < 6; ++e)
       for (int l = lanes; l < L; ++l) terms[e * L + l] = 0.0;
   double energy = 0.0;
-  for (int e = 0; e < 6 * L; ++e) energy += terms[e] * terms[e];
+  unsigned mask = 0;
+  for (int l = 0; l < L; ++l) {
+    const double* t = terms + l;  // F_j: entry (row, column) at t[(2 row + column) L]
+    double facing = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const int p = (c + 1) % 3, q = (c + 2) % 3;
+      const double posed_normal = posed[2 * p][l] * posed[2 * q + 1][l] - posed[2 * q][l] * posed[2 * p + 1][l];
+      const double target_normal = t[2 * p * L] * t[(2 * q + 1) * L] - t[2 * q * L] * t[(2 * p + 1) * L];
+      facing += posed_normal * target_normal;
+    }
+    mask |= facing < 0.0 ? 1u << l : 0u;
+  }
+  for (int e = 0; e < 6; ++e)
+    for (int l = 0; l < L; ++l) {
+      const double r = posed[e][l] - terms[e * L + l];
+      terms[e * L + l] = r;
+      energy += r * r;
+    }
+  *inverted = mask;
   return energy;
 }
 
@@ -309,14 +328,18 @@ void PoseEvaluator::gather_vertices(double* vertices) const {
   }
 }
 
-double PoseEvaluator::residual_energy(const double* vertices) {
+double PoseEvaluator::residual_energy(const double* vertices, std::vector<int>& inverted) {
   double energy = 0.0;
+  inverted.clear();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
     const int first = batch * L;
+    unsigned mask = 0;
     energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
                              set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
                              std::min(L, set_.num_triangles - first),
-                             residual_.data() + static_cast<size_t>(batch) * 6 * L);
+                             residual_.data() + static_cast<size_t>(batch) * 6 * L, &mask);
+    for (int l = 0; mask != 0; ++l, mask >>= 1)
+      if (mask & 1u) inverted.push_back(first + l);
   }
   return energy;
 }
@@ -371,7 +394,7 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
   gather_vertices(out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
-  out.energy = residual_energy(out.vertices.data()) + regularization_ * w.squaredNorm();
+  out.energy = residual_energy(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
   out.evaluation = ++evaluations_;
   if (!with_jacobian) return;

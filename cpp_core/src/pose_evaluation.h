@@ -21,6 +21,9 @@ struct PoseEvaluation {
   std::vector<double> weights;   // #E: the weights w evaluated
   std::vector<double> vertices;  // #V by 3: x*(w), handles at their targets
   double energy = 0.0;           // phi(w), regularization included
+  // Ascending internal indices of the triangles of x*(w) turned over against their targets
+  // F_j(w) (normals at more than 90 degrees; see batch_residual).
+  std::vector<int> inverted_triangles;
   Eigen::MatrixXd schur;         // #E by #E: S (only with the Jacobian)
   Eigen::VectorXd step_rhs;      // #E: g = -(1/2) d phi / dw (only with the Jacobian)
   // #E by #E: -sum_j <R_j, d2F_j/dw dw>, so that S + second_order is half the Hessian of phi
@@ -72,8 +75,8 @@ class PoseEvaluator {
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(double* vertices) const;
   // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble(); replaces F
-  // by those residuals in residual_.
-  double residual_energy(const double* vertices);
+  // by those residuals in residual_ and lists the triangles turned over against F in inverted.
+  double residual_energy(const double* vertices, std::vector<int>& inverted);
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;

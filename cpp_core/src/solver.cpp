@@ -1,4 +1,5 @@
 // Solver: validates a handle set, factors its system once, and poses the mesh per target set.
+#include <algorithm>
 #include <mutex>
 
 #include "example_set_impl.h"
@@ -90,6 +91,8 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   SolveResult result =
       gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, options, progress);
   result.vertices = set.to_user(result.vertices);
+  for (int& j : result.inverted_triangles) j = set.triangle_of_internal[j];
+  std::sort(result.inverted_triangles.begin(), result.inverted_triangles.end());
   return result;
 }
 

@@ -95,6 +95,14 @@ NumpyArray to_numpy(std::vector<double>&& values, std::initializer_list<size_t> 
   return NumpyArray(owned->data(), shape.size(), shape.begin(), owner);
 }
 
+// A 1-D int64 numpy array holding a copy of indices.
+nb::object index_array(const std::vector<int>& indices) {
+  auto* owned = new std::vector<int64_t>(indices.begin(), indices.end());
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<int64_t>*>(p); });
+  const size_t shape[1] = {owned->size()};
+  return nb::cast(nb::ndarray<nb::numpy, int64_t>(owned->data(), 1, shape, owner));
+}
+
 // "nonlinear" or "linear" as a FeatureSpace; InputError otherwise.
 meshik::FeatureSpace parse_feature_space(const std::string& name) {
   if (name == "nonlinear") return meshik::FeatureSpace::kNonlinear;
@@ -151,6 +159,7 @@ struct PySolveResult {
   int iterations;
   double residual;
   bool converged;
+  nb::object inverted_triangles;
 };
 
 struct PySolver {
@@ -251,7 +260,7 @@ PySolveResult solve(const PySolver& self, const nb::object& targets,
   return PySolveResult{nb::cast(to_numpy(std::move(result.vertices), {n, 3})),
                        nb::cast(to_numpy(std::move(result.weights), {k})),
                        nb::cast(to_numpy(std::move(result.energies), {e})), result.iterations,
-                       result.residual, result.converged};
+                       result.residual, result.converged, index_array(result.inverted_triangles)};
 }
 
 }  // namespace
@@ -291,6 +300,10 @@ NB_MODULE(_core, m) {
       .def_ro("iterations", &PySolveResult::iterations, "Gauss-Newton iterations taken")
       .def_ro("residual", &PySolveResult::residual, "final energy")
       .def_ro("converged", &PySolveResult::converged, "stopped by the tolerance")
+      .def_ro("inverted_triangles", &PySolveResult::inverted_triangles,
+              "(t,) int64 ascending indices of the faces that the pose turns over against the "
+              "orientation their blended deformation asks for (folds, e.g. beside a handle dragged "
+              "where the examples cannot follow)")
       .def("__repr__", [](const PySolveResult& r) {
         return "SolveResult(iterations=" + std::to_string(r.iterations) +
                ", residual=" + std::to_string(r.residual) +
@@ -333,16 +346,7 @@ NB_MODULE(_core, m) {
              return blend(*self.examples, weights, self.solver->options().feature_space);
            },
            "weights"_a, "The examples combined with weights (k,) in this solver's feature space.")
-      .def_prop_ro("handles",
-                   [](const PySolver& self) {
-                     const std::vector<int>& h = self.solver->handles();
-                     auto* owned = new std::vector<int64_t>(h.begin(), h.end());
-                     nb::capsule owner(owned, [](void* p) noexcept {
-                       delete static_cast<std::vector<int64_t>*>(p);
-                     });
-                     const size_t shape[1] = {owned->size()};
-                     return nb::cast(nb::ndarray<nb::numpy, int64_t>(owned->data(), 1, shape, owner));
-                   })
+      .def_prop_ro("handles", [](const PySolver& self) { return index_array(self.solver->handles()); })
       .def_prop_ro("num_examples", [](const PySolver& s) { return s.examples->num_examples(); })
       .def_prop_ro("num_vertices", [](const PySolver& s) { return s.examples->num_vertices(); })
       .def_prop_ro("feature_space",

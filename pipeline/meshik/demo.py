@@ -39,12 +39,12 @@ def summary_row(sample: str, report: Dict[str, Any]) -> List[str]:
     solver = report["solver"]
     return [sample, f"{solver['posed_vertices']:,}", str(report["frame_count"]),
             f"{1000 * report['timings']['solve_mean']:.2f}", f"{drc / 1024:.1f}", f"{glb / 1024:.1f}",
-            f"{report['handle_fit_error']['max']:.2e}"]
+            f"{report['handle_fit_error']['max']:.2e}", str(report["inverted_triangles"]["max"])]
 
 
 def print_table(rows: List[List[str]]) -> None:
     """Prints rows under the summary header, columns aligned."""
-    header = ["sample", "vertices", "frames", "ms/frame", "drc KiB", "glb KiB", "max handle error"]
+    header = ["sample", "vertices", "frames", "ms/frame", "drc KiB", "glb KiB", "max handle error", "max inverted"]
     widths = [max(len(r[i]) for r in [header] + rows) for i in range(len(header))]
     for row in [header, ["-" * w for w in widths]] + rows:
         print("  ".join(cell.rjust(w) for cell, w in zip(row, widths)))

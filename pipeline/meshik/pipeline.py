@@ -191,6 +191,7 @@ def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_op
     """The report.json document (without "outputs", which the commit adds)."""
     frames = [{"name": frame, "weights": posed.weights[k].tolist(), "iterations": int(posed.iterations[k]),
                "residual": float(posed.residuals[k]), "converged": bool(posed.converged[k]),
+               "inverted_triangles": int(posed.inverted_triangles[k]),
                "solve_seconds": float(posed.solve_seconds[k]),
                "handle_fit_error": {"max": float(fit[k].max()), "rms": float(np.sqrt(np.mean(fit[k] ** 2)))}}
               for k, frame in enumerate(resolved.frame_names)]
@@ -210,6 +211,8 @@ def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_op
         "frame_count": len(frames),
         "fps": constraint_set.fps,
         "handle_fit_error": {"max": float(fit.max()), "rms": float(np.sqrt(np.mean(fit ** 2)))},
+        "inverted_triangles": {"max": int(posed.inverted_triangles.max()),
+                               "frames": int(np.count_nonzero(posed.inverted_triangles))},
         "quantization": {"bits": grid.bits, "origin": list(grid.origin), "range": grid.range, "step": grid.step},
         "timings": dict(timings, precompute=posed.precompute_seconds, solve_total=float(posed.solve_seconds.sum()),
                         solve_mean=float(posed.solve_seconds.mean())),

@@ -14,6 +14,7 @@ class PosedAnimation:
     """The solver's output for every frame.
 
     vertices: #frames by #V by 3; weights: #frames by #E; iterations, residuals, converged,
+    inverted_triangles (how many faces the pose turns over against their blended deformation),
     solve_seconds: #frames each; precompute_seconds: example-set features plus the factorisation.
     """
     vertices: np.ndarray
@@ -21,6 +22,7 @@ class PosedAnimation:
     iterations: np.ndarray
     residuals: np.ndarray
     converged: np.ndarray
+    inverted_triangles: np.ndarray
     solve_seconds: np.ndarray
     precompute_seconds: float
 
@@ -49,6 +51,7 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     weights = np.empty((frames, len(meshes.examples)))
     iterations, residuals = np.empty(frames, dtype=np.int64), np.empty(frames)
     converged, seconds = np.empty(frames, dtype=bool), np.empty(frames)
+    inverted = np.empty(frames, dtype=np.int64)
     previous = None
     for k in range(frames):
         start = time.perf_counter()
@@ -56,8 +59,10 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
         seconds[k] = time.perf_counter() - start
         vertices[k], weights[k] = result.vertices, result.weights
         iterations[k], residuals[k], converged[k] = result.iterations, result.residual, result.converged
+        inverted[k] = len(result.inverted_triangles)
         previous = weights[k]
         if on_frame is not None:
             on_frame()
     return PosedAnimation(vertices=vertices, weights=weights, iterations=iterations, residuals=residuals,
-                          converged=converged, solve_seconds=seconds, precompute_seconds=precompute)
+                          converged=converged, inverted_triangles=inverted, solve_seconds=seconds,
+                          precompute_seconds=precompute)

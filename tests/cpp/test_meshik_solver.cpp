@@ -1,8 +1,10 @@
 // The solver on a generated example set (a tube that bends, twists and bulges): rest handles give
 // the rest pose, example handles give the example and its weight vector, Gauss-Newton lowers the
-// energy every iteration, warm starts, cancellation, isolated vertices and regularization.
+// energy every iteration, warm starts, cancellation, isolated vertices, regularization, and the
+// triangles a handle dragged out of reach turns over.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "test_meshik_support.h"
@@ -45,6 +47,7 @@ TEST_P(TubeSolver, RestHandlesGiveTheRestPose) {
   EXPECT_EQ(result.iterations, 0);
   EXPECT_LT(meshik_test::max_vertex_distance(result.vertices, meshes_.rest), 1e-10 * diagonal_);
   for (double w : result.weights) EXPECT_NEAR(w, 0.0, 1e-12);
+  EXPECT_TRUE(result.inverted_triangles.empty());
 }
 
 TEST_P(TubeSolver, ExampleHandlesReproduceTheExampleAndItsWeights) {
@@ -58,6 +61,36 @@ TEST_P(TubeSolver, ExampleHandlesReproduceTheExampleAndItsWeights) {
     for (size_t e = 0; e < result.weights.size(); ++e)
       EXPECT_NEAR(result.weights[e], e == i ? 1.0 : 0.0, 1e-6) << "example " << i;
     EXPECT_LT(result.residual, 1e-12);
+    EXPECT_TRUE(result.inverted_triangles.empty()) << "example " << i;
+  }
+}
+
+TEST_P(TubeSolver, AHandleDraggedPastItsNeighboursTurnsItsTrianglesOver) {
+  // Handle 0 (vertex 0, on the tube's first ring) moved along the axis by three ring spacings,
+  // the other handles left at rest: the examples cannot follow, so its triangles fold over.
+  const Solver solver = make_solver();
+  std::vector<double> targets = targets_from(meshes_.rest);
+  ASSERT_EQ(handles_[0], 0);
+  targets[2] += 1.0;
+  const SolveResult result = solver.solve(targets.data());
+  const std::vector<int>& inverted = result.inverted_triangles;
+  ASSERT_FALSE(inverted.empty());
+  EXPECT_TRUE(std::is_sorted(inverted.begin(), inverted.end()));
+  bool touches_the_handle = false;
+  for (int j : inverted) {
+    ASSERT_GE(j, 0);
+    ASSERT_LT(j, meshes_.num_triangles());
+    for (int q = 0; q < 3; ++q) touches_the_handle |= meshes_.triangles[3 * j + q] == 0;
+  }
+  EXPECT_TRUE(touches_the_handle);
+  // Each listed triangle's posed normal points away from its rest normal here (w stays near 0).
+  for (int j : inverted) {
+    const int* t = &meshes_.triangles[3 * j];
+    auto normal = [t](const std::vector<double>& x) {
+      const Eigen::Vector3d a(&x[3 * t[0]]), b(&x[3 * t[1]]), c(&x[3 * t[2]]);
+      return Eigen::Vector3d((b - a).cross(c - a));
+    };
+    EXPECT_LT(normal(result.vertices).dot(normal(meshes_.rest)), 0.0) << "triangle " << j;
   }
 }
 

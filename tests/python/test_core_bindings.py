@@ -1,5 +1,5 @@
 """meshik._core from Python: array conversions, shape errors, InputError, the solve round trip on a
-generated bending/twisting tube, warm starts, progress and cancellation."""
+generated bending/twisting tube, warm starts, progress and cancellation, inverted triangles."""
 import numpy as np
 import pytest
 
@@ -55,6 +55,41 @@ def test_example_handles_give_the_example_and_its_unit_weight(tube, space):
         assert np.abs(result.vertices - pose).max() < 1e-6 * np.ptp(rest, axis=0).max()
         np.testing.assert_allclose(result.weights, np.eye(3)[i], atol=1e-6)
         assert result.converged and result.residual < 1e-12
+        assert result.inverted_triangles.dtype == np.int64 and result.inverted_triangles.size == 0
+
+
+def linear_space_inverted_triangles(rest, faces, examples, weights, posed):
+    """Indices of the faces whose posed normal points away from the normal that the linear blend
+    of the examples' deformation gradients, T(w) = I + sum_i w_i (T_i - I), gives the rest face
+    (T_i = V~_i V^-1 with the fourth vertex of DESIGN.md section 2), computed here from scratch."""
+    def frames(v):
+        e1, e2 = v[faces[:, 1]] - v[faces[:, 0]], v[faces[:, 2]] - v[faces[:, 0]]
+        n = np.cross(e1, e2)
+        return np.stack([e1, e2, n / np.sqrt(np.linalg.norm(n, axis=1))[:, None]], axis=2)
+    rest_frames = frames(rest)
+    blended = np.eye(3) + sum(w * (frames(e) @ np.linalg.inv(rest_frames) - np.eye(3)) for w, e in zip(weights, examples))
+    target = blended @ rest_frames
+    target_normal = np.cross(target[:, :, 0], target[:, :, 1])
+    posed_normal = np.cross(posed[faces[:, 1]] - posed[faces[:, 0]], posed[faces[:, 2]] - posed[faces[:, 0]])
+    return np.nonzero(np.einsum("ij,ij->i", posed_normal, target_normal) < 0)[0]
+
+
+@pytest.mark.parametrize("shift", [0.3, 1.0, 1.6])
+def test_inverted_triangles_match_a_recomputation_in_the_linear_space(tube, shift):
+    """Handle 0 (vertex 0) dragged along the tube past its neighbours: the faces reported turned
+    over are exactly those a numpy recomputation finds, none for a small drag, some around the
+    handle for a large one."""
+    rest, faces, examples = tube
+    solver = meshik.Solver(rest, faces, examples, HANDLES, feature_space="linear")
+    targets = rest[HANDLES].copy()
+    targets[0, 2] += shift
+    result = solver.solve(targets)
+    expected = linear_space_inverted_triangles(rest, faces, examples, result.weights, result.vertices)
+    np.testing.assert_array_equal(result.inverted_triangles, expected)
+    if shift < 0.5:
+        assert result.inverted_triangles.size == 0
+    else:
+        assert np.isin(0, faces[result.inverted_triangles])
 
 
 def test_float32_and_int32_inputs_are_converted(tube):

@@ -81,6 +81,9 @@ def test_report_records_fit_weights_timings_and_sizes(shot, tmp_path):
     first_example = [frame["weights"][0] for frame in report["frames"]]
     assert first_example == sorted(first_example) and first_example[-1] > 0.5
     assert set(report["timings"]) >= {"load", "simplify", "pose", "export", "total", "precompute", "solve_mean"}
+    inverted = [frame["inverted_triangles"] for frame in report["frames"]]
+    assert all(isinstance(count, int) and count >= 0 for count in inverted)
+    assert report["inverted_triangles"] == {"max": max(inverted), "frames": sum(count > 0 for count in inverted)}
     for name, size in report["outputs"].items():
         assert (out / name).stat().st_size == size
     assert pose_job(shot["path"], out, formats=("drc", "glb"), feature_space="linear", quiet=True)["skipped"]

@@ -45,6 +45,7 @@ def assert_same_pose(ms, output, expected):
     np.testing.assert_allclose(output["weights"], expected.weights, rtol=1e-9, atol=1e-12)
     assert output["iterations"] == expected.iterations
     assert output["residual"] == pytest.approx(expected.residual, rel=1e-6, abs=1e-12)
+    assert output["inverted_triangles"] == len(expected.inverted_triangles)
 
 
 @pytest.mark.parametrize("name", SAMPLE_SETS)

@@ -51,6 +51,11 @@ struct SolveResult {
   bool converged = false;        // stopped by the tolerance rather than max_iterations
   std::vector<double> energies;  // energy at the start and after each accepted iteration
                                  // (non-increasing; the last equals residual)
+  // Ascending indices of the triangles that the pose turns over against the orientation their
+  // blended deformation asks for (the posed triangle's normal at more than 90 degrees from its
+  // target's): folds, typically beside a handle dragged where the examples' space cannot follow.
+  // Empty for every example reproduced from its own handles.
+  std::vector<int> inverted_triangles;
 };
 
 // Called with a fraction in [0, 1] and a short stage name; return false to cancel
