@@ -1,6 +1,7 @@
 """meshik._core on the real example sets (../shared/data; skipped when absent) and on the project's
 generated sample sets (sample_meshes/; skipped when absent): examples are reproduced from their own
-handles, and a held-out pose is approached better by the nonlinear space than by the linear one."""
+handles, and a held-out pose is approached better, with fewer folded triangles, by the nonlinear
+space than by the linear one."""
 import pathlib
 
 import numpy as np
@@ -90,8 +91,8 @@ def facing_against(result, truth, faces):
 
 def test_horse_pose_covered_by_the_examples_is_posed_without_flips(shared_data):
     """Horse pose 10 held out, poses 1-9 as examples, 16 handles at its positions: the nonlinear
-    space lands closer than the linear one and flips no triangle against the true pose (the linear
-    space flips some). Pose 10 is the held-out pose that the other nine examples cover: for other
+    space lands closer than the linear one, flips no triangle against the true pose (the linear
+    space flips some) and turns none over against its own blended deformation. Pose 10 is the held-out pose that the other nine examples cover: for other
     poses, some triangles already flip in the examples' own handle-free blend, because the horse
     examples contain sharply creased regions that no blend of them can undo (see the solver notes)."""
     rest_path, pose_paths = example_set_files(shared_data / "horse-poses")
@@ -100,10 +101,32 @@ def test_horse_pose_covered_by_the_examples_is_posed_without_flips(shared_data):
     truth = poses[9]
     example_set = meshik.ExampleSet(rest, faces, poses[:9])
     handles = farthest_points(rest, 16)
-    flips, errors = {}, {}
+    flips, errors, inverted = {}, {}, {}
     for space in ("nonlinear", "linear"):
         result = meshik.Solver.from_example_set(example_set, handles, feature_space=space).solve(truth[handles])
         flips[space] = facing_against(result.vertices, truth, faces)
+        inverted[space] = len(result.inverted_triangles)
         errors[space] = np.sqrt(np.mean(np.sum((result.vertices - truth) ** 2, axis=1)))
     assert flips["nonlinear"] == 0 and flips["linear"] > 0, flips
     assert errors["nonlinear"] < errors["linear"], errors
+    assert inverted["nonlinear"] == 0, inverted
+
+
+@pytest.mark.parametrize("folder", ["lion-poses", "cat-poses"])
+def test_held_out_poses_fold_fewer_triangles_in_the_nonlinear_space(shared_data, folder):
+    """Each pose held out in turn (the others are the examples), 16 handles at its positions: summed
+    over the poses, the nonlinear space turns far fewer faces over against their blended
+    deformation than the linear space (measured: lion 892 against 1,947, cat 1,627 against 4,501;
+    the folds left sit beside handles the examples cannot follow and where extrapolated weights
+    blend incompatible features)."""
+    rest_path, pose_paths = example_set_files(shared_data / folder)
+    rest, faces = read_obj(rest_path)
+    poses = [read_obj(p)[0] for p in pose_paths]
+    handles = farthest_points(rest, 16)
+    inverted = {"nonlinear": 0, "linear": 0}
+    for held in range(len(poses)):
+        example_set = meshik.ExampleSet(rest, faces, [p for i, p in enumerate(poses) if i != held])
+        for space in inverted:
+            result = meshik.Solver.from_example_set(example_set, handles, feature_space=space).solve(poses[held][handles])
+            inverted[space] += len(result.inverted_triangles)
+    assert inverted["nonlinear"] < 0.6 * inverted["linear"], inverted
