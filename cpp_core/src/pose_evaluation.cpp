@@ -91,9 +91,10 @@ MESHIK_LANE_INLINE void transpose_rows(LaneRow (&r)[L]) {
 
 // G'^T for one batch: every free corner q of triangle j adds g_q . (row c of each block) to its
 // row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_). out: blend_batch's output;
-// stride: a multiple of kLanes; source: `stride` entries, the row of out (a multiple of 6, that block's first row, whose next
-// row holds the second column) that each column of rhs takes, or -1 for a padding column;
-// lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by 6): the batch's.
+// stride: a multiple of kLanes; source: `stride` entries, for each column of rhs the row of out
+// holding its first column (the next row holds the second), or -1 for a padding column (see
+// column_sources); lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by
+// 6): the batch's.
 // Eight columns at a time, the batch's rows are transposed in registers, so that each triangle's
 // values are one vector per column block.
 MESHIK_SIMD_CLONES
@@ -151,8 +152,10 @@ double batch_residual(const double* vertices, const int* triangles, const double
     double facing = 0.0;
     for (int c = 0; c < 3; ++c) {
       const int p = (c + 1) % 3, q = (c + 2) % 3;
-      const double posed_normal = posed[2 * p][l] * posed[2 * q + 1][l] - posed[2 * q][l] * posed[2 * p + 1][l];
-      const double target_normal = t[2 * p * L] * t[(2 * q + 1) * L] - t[2 * q * L] * t[(2 * p + 1) * L];
+      const double posed_normal =
+          posed[2 * p][l] * posed[2 * q + 1][l] - posed[2 * q][l] * posed[2 * p + 1][l];
+      const double target_normal =
+          t[2 * p * L] * t[(2 * q + 1) * L] - t[2 * q * L] * t[(2 * p + 1) * L];
       facing += posed_normal * target_normal;
     }
     mask |= facing < 0.0 ? 1u << l : 0u;
@@ -394,7 +397,8 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
   gather_vertices(out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
-  out.energy = residual_energy(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
+  out.energy =
+      residual_energy(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
   out.evaluation = ++evaluations_;
   if (!with_jacobian) return;
