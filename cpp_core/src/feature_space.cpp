@@ -225,17 +225,20 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
     x_f_phi[1][l] = x_f[2][l] * r.phi[0][l] - x_f[0][l] * r.phi[2][l];
     x_f_phi[2][l] = x_f[0][l] * r.phi[1][l] - x_f[1][l] * r.phi[0][l];
   }
-  // psi_b and X(J_b) for a chunk of up to kChunk examples b, then every a >= b against the chunk
-  // (the second derivatives are symmetric in a and b).
+  // psi_b, X(J_b) and phi . phi_b for a chunk of up to kChunk examples b, then every a >= b
+  // against the chunk (the second derivatives are symmetric in a and b).
   constexpr int kChunk = 8;
-  double psi_chunk[kChunk][3][L], x_j_chunk[kChunk][3][L];
+  double psi_chunk[kChunk][3][L], x_j_chunk[kChunk][3][L], phi_v_chunk[kChunk][L];
   for (int b0 = 0; b0 < k; b0 += kChunk) {
     const int chunk = k - b0 < kChunk ? k - b0 : kChunk;
     for (int i = 0; i < chunk; ++i) {
-      left_jacobian_times(r, feature + (b0 + i) * 9 * L, psi_chunk[i]);
+      const double* v = feature + (b0 + i) * 9 * L;  // phi_b
+      left_jacobian_times(r, v, psi_chunk[i]);
       column_cross_sum(out + (b0 + i + 1) * 6 * L, residual, x_j_chunk[i]);
+      for (int l = 0; l < L; ++l)
+        phi_v_chunk[i][l] = r.phi[0][l] * v[l] + r.phi[1][l] * v[L + l] + r.phi[2][l] * v[2 * L + l];
     }
-    for (int a = 0; a < k; ++a) {
+    for (int a = b0; a < k; ++a) {
       const double* u = feature + a * 9 * L;  // phi_a
       double psi_a[3][L], x_rd[3][L], rotated_d[6 * L];
       left_jacobian_times(r, u, psi_a);
@@ -243,33 +246,31 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
       cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
       for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
       column_cross_sum(rotated_d, residual, x_rd);
+      // (d psi_a / dw_b) . x, with psi_a = u + b phi x u + c phi x (phi x u) and d phi / dw_b = v:
+      //   2 (phi . v) (db pu . x + dc pu . (x x phi))
+      //   + b (v x u) . x + c ((v x pu) . x + (v x u) . (x x phi)),       pu = phi x u,
+      // is (phi . v) s + v . t with, per a, s = 2 (db pu . x + dc pu . (x x phi)) and
+      // t = b (u x x) + c (pu x x + u x (x x phi)) (triple products rotated to isolate v).
+      double s_a[L], t_a[3][L];
+      for (int l = 0; l < L; ++l) {
+        const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
+        const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
+        const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
+        const double y0 = x_f_phi[0][l], y1 = x_f_phi[1][l], y2 = x_f_phi[2][l];
+        const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
+        s_a[l] = 2.0 * (db[l] * (pu0 * x0 + pu1 * x1 + pu2 * x2) + dc[l] * (pu0 * y0 + pu1 * y1 + pu2 * y2));
+        t_a[0][l] = r.b[l] * (u1 * x2 - u2 * x1) + r.c[l] * (pu1 * x2 - pu2 * x1 + u1 * y2 - u2 * y1);
+        t_a[1][l] = r.b[l] * (u2 * x0 - u0 * x2) + r.c[l] * (pu2 * x0 - pu0 * x2 + u2 * y0 - u0 * y2);
+        t_a[2][l] = r.b[l] * (u0 * x1 - u1 * x0) + r.c[l] * (pu0 * x1 - pu1 * x0 + u0 * y1 - u1 * y0);
+      }
       for (int i = 0; i < chunk && b0 + i <= a; ++i) {
         const int b = b0 + i;
         const double* v = feature + b * 9 * L;  // phi_b
-        const double(&psi_b)[3][L] = psi_chunk[i];
-        const double(&x_jb)[3][L] = x_j_chunk[i];
         double* acc = curvature_lanes + (a * k + b) * L;
-        for (int l = 0; l < L; ++l) {
-          const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
-          const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
-          const double v0 = v[l], v1 = v[L + l], v2 = v[2 * L + l];
-          // pu = phi x u, vu = v x u.
-          const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
-          const double vu0 = v1 * u2 - v2 * u1, vu1 = v2 * u0 - v0 * u2, vu2 = v0 * u1 - v1 * u0;
-          const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
-          // x x v for the term (v x pu) . x = pu . (x x v).
-          const double xv0 = x1 * v2 - x2 * v1, xv1 = x2 * v0 - x0 * v2, xv2 = x0 * v1 - x1 * v0;
-          const double phi_v = px * v0 + py * v1 + pz * v2;
-          const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2;
-          const double pu_xphi = pu0 * x_f_phi[0][l] + pu1 * x_f_phi[1][l] + pu2 * x_f_phi[2][l];
-          const double vu_x = vu0 * x0 + vu1 * x1 + vu2 * x2;
-          const double vu_xphi = vu0 * x_f_phi[0][l] + vu1 * x_f_phi[1][l] + vu2 * x_f_phi[2][l];
-          const double pu_xv = pu0 * xv0 + pu1 * xv1 + pu2 * xv2;
-          // (d psi_a / dw_b) . x with d/dv [u + b phi x u + c phi x (phi x u)].
-          const double dpsi_x = 2.0 * phi_v * (db[l] * pu_x + dc[l] * pu_xphi) + r.b[l] * vu_x +
-                                r.c[l] * (pu_xv + vu_xphi);
-          acc[l] += dpsi_x + dot_lane(psi_a, x_jb, l) + dot_lane(psi_b, x_rd, l);
-        }
+        for (int l = 0; l < L; ++l)
+          acc[l] += phi_v_chunk[i][l] * s_a[l] + v[l] * t_a[0][l] + v[L + l] * t_a[1][l] +
+                    v[2 * L + l] * t_a[2][l] + dot_lane(psi_a, x_j_chunk[i], l) +
+                    dot_lane(psi_chunk[i], x_rd, l);
       }
     }
   }

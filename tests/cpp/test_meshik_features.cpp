@@ -121,12 +121,30 @@ INSTANTIATE_TEST_SUITE_P(BothFeatureSpaces, Features,
                            return info.param == FeatureSpace::kNonlinear ? "Nonlinear" : "Linear";
                          });
 
-TEST(FeatureCurvature, SecondDerivativesMatchFiniteDifferencesOfTheJacobian) {
-  const ExampleMeshes meshes = meshik_test::make_tube_examples();
+// The tube's three examples, then (for more) partial versions of them: rest + s (example - rest).
+ExampleMeshes tube_with_examples(int count) {
+  ExampleMeshes meshes = meshik_test::make_tube_examples();
+  const std::vector<std::vector<double>> full = meshes.examples;
+  for (int i = 3; i < count; ++i) {
+    const std::vector<double>& source = full[i % 3];
+    std::vector<double> partial(meshes.rest.size());
+    const double s = 0.15 + 0.1 * i;
+    for (size_t e = 0; e < partial.size(); ++e) partial[e] = meshes.rest[e] + s * (source[e] - meshes.rest[e]);
+    meshes.examples.push_back(partial);
+  }
+  return meshes;
+}
+
+class FeatureCurvature : public ::testing::TestWithParam<int> {};
+
+// With 3 examples and with 10 (more than one chunk of 8 examples b in the accumulation).
+TEST_P(FeatureCurvature, SecondDerivativesMatchFiniteDifferencesOfTheJacobian) {
+  const int k = GetParam();
+  const ExampleMeshes meshes = tube_with_examples(k);
   const meshik::ExampleSet set(meshes.view(), meshes.example_pointers());
   const meshik::ExampleFeatures& features = set.impl().features;
-  const int k = 3;
-  const std::vector<double> w = {0.9, 1.7, -0.4};
+  std::vector<double> w = {0.9, 1.7, -0.4};
+  for (int i = 3; i < k; ++i) w.push_back(0.3 - 0.07 * i);
   std::mt19937 random(9);
   std::normal_distribution<double> normal;
   std::vector<double> residual(6 * kLanes);
@@ -155,6 +173,8 @@ TEST(FeatureCurvature, SecondDerivativesMatchFiniteDifferencesOfTheJacobian) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(ExampleCounts, FeatureCurvature, ::testing::Values(3, 10));
 
 TEST(FeatureBranches, ATwistBeyondAHalfTurnBlendsHalfWayWithoutUnwinding) {
   // A tube twisted by 1.5 pi: rotations pass a half turn along it. Halfway through the blend the
