@@ -165,29 +165,16 @@ MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], i
   return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
 }
 
-}  // namespace
-
-MESHIK_SIMD_CLONES
-void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
-                 double* out) {
+// blend_batch's nonlinear branch, leaving the batch's rotation in r.
+MESHIK_LANE_INLINE void blend_nonlinear(const ExampleFeatures& features, const double* w, int batch,
+                                        double* out, BatchRotation& r) {
   const int k = features.num_examples;
   const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  if (space == FeatureSpace::kLinear) {
-    const double* lin = features.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
-    for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
-    for (int i = 0; i < k; ++i)
-      for (int e = 0; e < 6 * L; ++e) {
-        out[e] += w[i] * lin[i * 6 * L + e];
-        out[(i + 1) * 6 * L + e] = lin[i * 6 * L + e];
-      }
-    return;
-  }
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   if (batch + kPrefetchDistance < features.num_batches) {
     prefetch_doubles(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
     prefetch_doubles(basis + kPrefetchDistance * 6 * L, 6 * L);
   }
-  BatchRotation r;
   blend_rotation(feature, w, k, r);
   // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
   double stretch[6 * L];
@@ -205,14 +192,12 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
   }
 }
 
-MESHIK_SIMD_CLONES
-void accumulate_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
-                                   const double* out, const double* residual,
-                                   double* curvature_lanes) {
+// blend_batch_with_curvature's second part, for the batch's rotation r and blend output out.
+MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features, const BatchRotation& r,
+                                               int batch, const double* out, const double* residual,
+                                               double* curvature_lanes) {
   const int k = features.num_examples;
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  BatchRotation r;
-  blend_rotation(feature, w, k, r);
   double db[L], dc[L];
   rodrigues_derivative_lanes<L>(r.theta_squared, r.a, r.b, r.c, db, dc);
   // With X(M) = sum_col M_col x R_col, <R, [v]_x M> = v . X(M), and
@@ -274,6 +259,35 @@ void accumulate_residual_curvature(const ExampleFeatures& features, const double
       }
     }
   }
+}
+
+}  // namespace
+
+MESHIK_SIMD_CLONES
+void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
+                 double* out) {
+  if (space == FeatureSpace::kLinear) {
+    const int k = features.num_examples;
+    const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
+    const double* lin = features.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
+    for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
+    for (int i = 0; i < k; ++i)
+      for (int e = 0; e < 6 * L; ++e) {
+        out[e] += w[i] * lin[i * 6 * L + e];
+        out[(i + 1) * 6 * L + e] = lin[i * 6 * L + e];
+      }
+    return;
+  }
+  BatchRotation r;
+  blend_nonlinear(features, w, batch, out, r);
+}
+
+MESHIK_SIMD_CLONES
+void blend_batch_with_curvature(const ExampleFeatures& features, const double* w, int batch,
+                                const double* residual, double* out, double* curvature_lanes) {
+  BatchRotation r;
+  blend_nonlinear(features, w, batch, out, r);
+  add_residual_curvature(features, r, batch, out, residual, curvature_lanes);
 }
 
 }  // namespace meshik

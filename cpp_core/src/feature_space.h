@@ -54,12 +54,12 @@ inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * 
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out);
 
-// Nonlinear space only: adds, for every pair b <= a of examples and lane l, <R_j, d2F_j/dw_a dw_b>
-// (symmetric in a and b) to curvature_lanes[(a #E + b) kLanes + l], the second-order term of
-// the energy's Hessian that Gauss-Newton leaves out. out: blend_batch's output for this batch at w;
-// residual: R_j = Q_j(x) - F_j(w), 6 rows of kLanes (zero in padding lanes).
-void accumulate_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
-                                   const double* out, const double* residual,
-                                   double* curvature_lanes);
+// Nonlinear space only: blend_batch's output for `batch` at w (in out), and adds, for every pair
+// b <= a of examples and lane l, <R_j, d2F_j/dw_a dw_b> (symmetric in a and b) to
+// curvature_lanes[(a #E + b) kLanes + l], the second-order term of the energy's Hessian that
+// Gauss-Newton leaves out. residual: R_j = Q_j(x) - F_j(w), 6 rows of kLanes (zero in padding
+// lanes). One pass shares the blend's rotation with the curvature.
+void blend_batch_with_curvature(const ExampleFeatures& features, const double* w, int batch,
+                                const double* residual, double* out, double* curvature_lanes);
 
 }  // namespace meshik

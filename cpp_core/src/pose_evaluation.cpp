@@ -357,10 +357,9 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
   double* out = batch_out_.data();
   for (int batch = 0; batch < set_.features.num_batches; ++batch) {
-    blend_batch(set_.features, space_, at.weights.data(), batch, out);
-    accumulate_residual_curvature(set_.features, at.weights.data(), batch, out,
-                                  residual_.data() + static_cast<size_t>(batch) * 6 * L,
-                                  curvature_lanes_.data());
+    blend_batch_with_curvature(set_.features, at.weights.data(), batch,
+                               residual_.data() + static_cast<size_t>(batch) * 6 * L, out,
+                               curvature_lanes_.data());
   }
   for (int a = 0; a < k; ++a)
     for (int b = 0; b <= a; ++b) {

@@ -152,8 +152,10 @@ TEST_P(FeatureCurvature, SecondDerivativesMatchFiniteDifferencesOfTheJacobian) {
   const double h = 1e-6;
   for (int batch = 0; batch < features.num_batches; batch += 5) {
     std::vector<double> out(meshik::blend_batch_size(k)), curvature(k * k * kLanes, 0.0);
-    meshik::blend_batch(features, FeatureSpace::kNonlinear, w.data(), batch, out.data());
-    meshik::accumulate_residual_curvature(features, w.data(), batch, out.data(), residual.data(), curvature.data());
+    meshik::blend_batch_with_curvature(features, w.data(), batch, residual.data(), out.data(), curvature.data());
+    std::vector<double> blended(out.size());  // the same blend as blend_batch's
+    meshik::blend_batch(features, FeatureSpace::kNonlinear, w.data(), batch, blended.data());
+    EXPECT_EQ(out, blended) << "batch " << batch;
     for (int b = 0; b < k; ++b) {
       std::vector<double> plus = w, minus = w, out_plus(out.size()), out_minus(out.size());
       plus[b] += h;
