@@ -193,9 +193,9 @@ MESHIK_LANE_INLINE void blend_nonlinear(const ExampleFeatures& features, const d
 }
 
 // blend_batch_with_curvature's second part, for the batch's rotation r and blend output out.
-MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features, const BatchRotation& r,
-                                               int batch, const double* out, const double* residual,
-                                               double* curvature_lanes) {
+MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features,
+                                               const BatchRotation& r, int batch, const double* out,
+                                               const double* residual, double* curvature_lanes) {
   const int k = features.num_examples;
   const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   double db[L], dc[L];
@@ -221,7 +221,8 @@ MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features, 
       left_jacobian_times(r, v, psi_chunk[i]);
       column_cross_sum(out + (b0 + i + 1) * 6 * L, residual, x_j_chunk[i]);
       for (int l = 0; l < L; ++l)
-        phi_v_chunk[i][l] = r.phi[0][l] * v[l] + r.phi[1][l] * v[L + l] + r.phi[2][l] * v[2 * L + l];
+        phi_v_chunk[i][l] =
+            r.phi[0][l] * v[l] + r.phi[1][l] * v[L + l] + r.phi[2][l] * v[2 * L + l];
     }
     for (int a = b0; a < k; ++a) {
       const double* u = feature + a * 9 * L;  // phi_a
@@ -243,10 +244,12 @@ MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features, 
         const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
         const double y0 = x_f_phi[0][l], y1 = x_f_phi[1][l], y2 = x_f_phi[2][l];
         const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
-        s_a[l] = 2.0 * (db[l] * (pu0 * x0 + pu1 * x1 + pu2 * x2) + dc[l] * (pu0 * y0 + pu1 * y1 + pu2 * y2));
-        t_a[0][l] = r.b[l] * (u1 * x2 - u2 * x1) + r.c[l] * (pu1 * x2 - pu2 * x1 + u1 * y2 - u2 * y1);
-        t_a[1][l] = r.b[l] * (u2 * x0 - u0 * x2) + r.c[l] * (pu2 * x0 - pu0 * x2 + u2 * y0 - u0 * y2);
-        t_a[2][l] = r.b[l] * (u0 * x1 - u1 * x0) + r.c[l] * (pu0 * x1 - pu1 * x0 + u0 * y1 - u1 * y0);
+        const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2, pu_y = pu0 * y0 + pu1 * y1 + pu2 * y2;
+        s_a[l] = 2.0 * (db[l] * pu_x + dc[l] * pu_y);
+        const double b = r.b[l], c = r.c[l];
+        t_a[0][l] = b * (u1 * x2 - u2 * x1) + c * (pu1 * x2 - pu2 * x1 + u1 * y2 - u2 * y1);
+        t_a[1][l] = b * (u2 * x0 - u0 * x2) + c * (pu2 * x0 - pu0 * x2 + u2 * y0 - u0 * y2);
+        t_a[2][l] = b * (u0 * x1 - u1 * x0) + c * (pu0 * x1 - pu1 * x0 + u0 * y1 - u1 * y0);
       }
       for (int i = 0; i < chunk && b0 + i <= a; ++i) {
         const int b = b0 + i;

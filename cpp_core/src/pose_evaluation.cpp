@@ -116,8 +116,8 @@ void scatter_batch(const double* out, const int* source, int stride, int lanes, 
         const int u = rows[3 * l + q];
         if (u < 0) continue;
         double* row = rhs + static_cast<size_t>(u) * stride + block;
-        const LaneRow update = gradient[6 * l + 2 * q] * first[l] + gradient[6 * l + 2 * q + 1] * second[l];
-        const LaneRow sum = load_row(row) + update;
+        const double* g = gradient + 6 * l + 2 * q;
+        const LaneRow sum = load_row(row) + g[0] * first[l] + g[1] * second[l];
         std::memcpy(row, &sum, sizeof sum);
       }
   }
@@ -299,7 +299,8 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
             jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
       }
     }
-    scatter_batch(out, source.data(), stride_, lanes, set_.triangles.data() + 3 * static_cast<size_t>(first),
+    scatter_batch(out, source.data(), stride_, lanes,
+                  set_.triangles.data() + 3 * static_cast<size_t>(first),
                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
                   system_.unknown_of_vertex().data(), rhs_);
   }

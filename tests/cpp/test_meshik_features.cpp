@@ -129,7 +129,8 @@ ExampleMeshes tube_with_examples(int count) {
     const std::vector<double>& source = full[i % 3];
     std::vector<double> partial(meshes.rest.size());
     const double s = 0.15 + 0.1 * i;
-    for (size_t e = 0; e < partial.size(); ++e) partial[e] = meshes.rest[e] + s * (source[e] - meshes.rest[e]);
+    for (size_t e = 0; e < partial.size(); ++e)
+      partial[e] = meshes.rest[e] + s * (source[e] - meshes.rest[e]);
     meshes.examples.push_back(partial);
   }
   return meshes;
@@ -152,7 +153,8 @@ TEST_P(FeatureCurvature, SecondDerivativesMatchFiniteDifferencesOfTheJacobian) {
   const double h = 1e-6;
   for (int batch = 0; batch < features.num_batches; batch += 5) {
     std::vector<double> out(meshik::blend_batch_size(k)), curvature(k * k * kLanes, 0.0);
-    meshik::blend_batch_with_curvature(features, w.data(), batch, residual.data(), out.data(), curvature.data());
+    meshik::blend_batch_with_curvature(features, w.data(), batch, residual.data(), out.data(),
+                                       curvature.data());
     std::vector<double> blended(out.size());  // the same blend as blend_batch's
     meshik::blend_batch(features, FeatureSpace::kNonlinear, w.data(), batch, blended.data());
     EXPECT_EQ(out, blended) << "batch " << batch;
