@@ -5,6 +5,7 @@
 #include <string>
 
 #include "example_set_impl.h"
+#include "gradient_operator.h"
 
 namespace meshik {
 
@@ -20,25 +21,12 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
     if (handle_of_vertex_[v] < 0 && set.components.component_of_vertex[v] >= 0)
       unknown_of_vertex_[v] = num_unknowns_++;
 
-  // K' (lower triangle): the unknowns keep the vertices' order, so row >= col is preserved.
-  CscMatrix lower;
-  lower.rows = lower.cols = num_unknowns_;
-  lower.col_start.reserve(num_unknowns_ + 1);
-  lower.row_index.reserve(k.row_index.size() / 2 + n);
-  lower.values.reserve(k.row_index.size() / 2 + n);
-  lower.col_start.push_back(0);
-  for (int v = 0; v < n; ++v) {
-    const int col = unknown_of_vertex_[v];
-    if (col < 0) continue;
-    for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
-      const int row = unknown_of_vertex_[k.row_index[s]];
-      if (row >= col) {
-        lower.row_index.push_back(row);
-        lower.values.push_back(k.values[s]);
-      }
-    }
-    lower.col_start.push_back(static_cast<int>(lower.row_index.size()));
-  }
+  const CscMatrix lower = restricted_lower(k, unknown_of_vertex_, num_unknowns_);
+  // The mesh's elimination order restricted to the unknowns.
+  std::vector<int> order;
+  order.reserve(num_unknowns_);
+  for (int v : set.vertex_elimination_order)
+    if (unknown_of_vertex_[v] >= 0) order.push_back(unknown_of_vertex_[v]);
 
   // K_fh: the handles' columns restricted to the unknowns' rows.
   coupling_start_.assign(1, 0);
@@ -64,7 +52,10 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   if (progress && !progress(0.0, "factorizing"))
     throw Cancelled("cancelled before factorizing");
   try {
-    if (num_unknowns_ > 0) factor_.compute(lower);
+    if (num_unknowns_ > 0) {
+      factor_.analyze(lower, order);
+      factor_.factorize(lower);
+    }
   } catch (const NotPositiveDefinite& e) {
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +
                      e.what());

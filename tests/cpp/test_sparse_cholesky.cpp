@@ -247,6 +247,45 @@ TEST(SparseCholesky, InvalidInputIsNamed) {
   EXPECT_THROW(chol.analyze(unsorted), std::invalid_argument);
 }
 
+TEST(SparseCholesky, GivenOrderIsValidatedAndUsed) {
+  const CscMatrix a = grid_laplacian(9, 7, 0.5);
+  const int n = a.rows;
+  SparseCholesky own, given;
+  own.analyze(a);
+  // Its own order given back reproduces its analysis.
+  given.analyze(a, SparseCholesky::fill_reducing_order(a));
+  EXPECT_EQ(given.permutation(), own.permutation());
+  EXPECT_EQ(given.factor_nonzeros(), own.factor_nonzeros());
+  // Any order is a valid one (here the worst kind: the grid's natural order reversed), only
+  // fuller.
+  std::vector<int> reversed(n);
+  for (int k = 0; k < n; ++k) reversed[k] = n - 1 - k;
+  given.analyze(a, reversed);
+  EXPECT_GT(given.factor_nonzeros(), own.factor_nonzeros());
+  given.factorize(a);
+  const int nrhs = 5;
+  const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 4);
+  std::vector<double> x = b;
+  given.solve(x.data(), nrhs);
+  EXPECT_LT(relative_residual(a, x, b, nrhs), 1e-12);
+
+  auto expect_named = [&](std::vector<int> order, const std::string& what) {
+    try {
+      given.analyze(a, order);
+      FAIL() << "accepted an order with " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_named(std::vector<int>(reversed.begin(), reversed.end() - 1), "has 62 entries");
+  std::vector<int> out_of_range = reversed;
+  out_of_range[3] = n;
+  expect_named(out_of_range, "entry 3 is 63");
+  std::vector<int> repeated = reversed;
+  repeated[5] = repeated[4];
+  expect_named(repeated, "entry 5 repeats column");
+}
+
 TEST(SparseCholesky, FactorizeRejectsAnotherPattern) {
   SparseCholesky chol;
   chol.analyze(grid_laplacian(5, 5, 1.0));

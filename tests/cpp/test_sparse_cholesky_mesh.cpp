@@ -85,6 +85,38 @@ TEST(SparseCholeskyMesh, HorseNormalMatrixBothForms) {
   expect_forms_agree(horse, 20);
 }
 
+// MeshIK orders the mesh once and factors every handle set's matrix (the mesh's with the
+// handles' rows and columns removed) in that order restricted to its columns.
+TEST(SparseCholeskyMesh, HorseHandleSetsShareTheMeshOrder) {
+  const auto horse = horse_or_empty();
+  if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";
+  const std::vector<int> mesh_order =
+      SparseCholesky::fill_reducing_order(meshik_bench::deformation_normal_matrix(horse, {}, false));
+  for (int handles : {1, 16, 200}) {
+    const std::vector<int> h = meshik_bench::spread_handles(horse.num_vertices(), handles);
+    const CscMatrix a = meshik_bench::deformation_normal_matrix(horse, h, false);
+    // deformation_normal_matrix numbers the free vertices in increasing order.
+    std::vector<int> column_of_vertex(horse.num_vertices(), 0);
+    for (int v : h) column_of_vertex[v] = -1;
+    int columns = 0;
+    for (int& c : column_of_vertex)
+      if (c == 0) c = columns++;
+    std::vector<int> order;
+    for (int v : mesh_order)
+      if (column_of_vertex[v] >= 0) order.push_back(column_of_vertex[v]);
+    SparseCholesky own, shared;
+    own.analyze(a);
+    shared.analyze(a, order);
+    EXPECT_LT(shared.factor_nonzeros(), 1.05 * own.factor_nonzeros()) << handles << " handles";
+    shared.factorize(a);
+    const int nrhs = 15;
+    const std::vector<double> b = random_values(static_cast<size_t>(a.rows) * nrhs, 11);
+    std::vector<double> x = b;
+    shared.solve(x.data(), nrhs);
+    EXPECT_LT(relative_residual(a, x, b, nrhs), 1e-10) << handles << " handles";
+  }
+}
+
 TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
   const auto horse = horse_or_empty();
   if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "sparse/analysis.h"
 #include "sparse/input_check.h"
@@ -20,6 +21,15 @@ struct SparseCholesky::Impl {
   Analysis analysis;
   FactorValues factor;
   bool factorized = false;
+
+  // Starts over with the analysis of a's pattern (no factorization yet).
+  void reset(const CscMatrix& a, Analysis fresh) {
+    input_col_start = a.col_start;
+    input_row_index = a.row_index;
+    analysis = std::move(fresh);
+    factor = FactorValues();
+    factorized = false;
+  }
 };
 
 namespace {
@@ -43,11 +53,18 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
 void SparseCholesky::analyze(const CscMatrix& a) {
   check_lower_input(a);
-  Impl fresh;
-  fresh.input_col_start = a.col_start;
-  fresh.input_row_index = a.row_index;
-  fresh.analysis = analyze_pattern(a);
-  *impl_ = std::move(fresh);
+  impl_->reset(a, analyze_pattern(a));
+}
+
+void SparseCholesky::analyze(const CscMatrix& a, const std::vector<int>& order) {
+  check_lower_input(a);
+  check_order(order, a.cols);
+  impl_->reset(a, analyze_pattern(a, order));
+}
+
+std::vector<int> SparseCholesky::fill_reducing_order(const CscMatrix& a) {
+  check_lower_input(a);
+  return sparse::fill_reducing_order(a);
 }
 
 void SparseCholesky::factorize(const CscMatrix& a) {
