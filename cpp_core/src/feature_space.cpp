@@ -19,6 +19,22 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
     for (int c = 0; c < 2; ++c) block[(first_row + 2 * r + c) * kLanes + lane] = m(r, c);
 }
 
+// Per-batch blocks of `rows` rows of kLanes doubles (num_batches of them) as single-precision
+// blocks of pairs of batches: rows of kCurvatureBatches kLanes, zero past the last batch.
+std::vector<float> paired_single(const std::vector<double>& blocks, int num_batches, int rows) {
+  constexpr int kPair = kCurvatureBatches * kLanes;
+  const int pairs = (num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
+  std::vector<float> paired(static_cast<size_t>(pairs) * rows * kPair, 0.0f);
+  for (int batch = 0; batch < num_batches; ++batch) {
+    const double* from = blocks.data() + static_cast<size_t>(batch) * rows * kLanes;
+    float* to = paired.data() + static_cast<size_t>(batch / kCurvatureBatches) * rows * kPair +
+                (batch % kCurvatureBatches) * kLanes;
+    for (int row = 0; row < rows; ++row)
+      for (int l = 0; l < kLanes; ++l) to[row * kPair + l] = static_cast<float>(from[row * kLanes + l]);
+  }
+  return paired;
+}
+
 }  // namespace
 
 ExampleFeatures compute_example_features(const TriangleFrames& frames,
@@ -63,6 +79,9 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
     if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
       throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
   }
+  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
+  features.nonlinear_single = paired_single(features.nonlinear, features.num_batches, 9 * k);
+  features.plane_basis_single = paired_single(features.plane_basis, features.num_batches, 6);
   return features;
 }
 
@@ -73,46 +92,55 @@ constexpr int L = kLanes;
 // How many batches ahead the blend asks for features (best of 2, 4 and 8 on the elephant).
 constexpr int kPrefetchDistance = 4;
 
-// The rotation of a nonlinear blend for one batch: phi = sum_i w_i phi_i, its Rodrigues
+// The helpers below work on N lanes of Real: N = kLanes doubles (one batch) for the blend, and
+// 2 kLanes floats (two batches) for the curvature. Lane-minor blocks have rows of N values.
+
+// The rotation of a nonlinear blend for N triangles: phi = sum_i w_i phi_i, its Rodrigues
 // coefficients and R = exp(phi) (row-major), per lane.
+template <typename Real, int N>
 struct BatchRotation {
-  double phi[3][L];
-  double theta_squared[L];
-  double a[L], b[L], c[L];
-  double rot[9][L];
+  Real phi[3][N];
+  Real theta_squared[N];
+  Real a[N], b[N], c[N];
+  Real rot[9][N];
 };
 
-// Fills r for the batch whose features (#E blocks of 9 rows) start at feature; weights w (#E).
-MESHIK_LANE_INLINE void blend_rotation(const double* feature, const double* w, int k, BatchRotation& r) {
+// Fills r for the triangles whose features (#E blocks of 9 rows) start at feature; weights w (#E).
+template <typename Real, int N>
+MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const double* w, int k, BatchRotation<Real, N>& r) {
   for (int d = 0; d < 3; ++d)
-    for (int l = 0; l < L; ++l) r.phi[d][l] = 0.0;
-  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < N; ++l) r.phi[d][l] = 0;
+  for (int i = 0; i < k; ++i) {
+    const Real weight = static_cast<Real>(w[i]);
     for (int d = 0; d < 3; ++d)
-      for (int l = 0; l < L; ++l) r.phi[d][l] += w[i] * feature[(i * 9 + d) * L + l];
-  for (int l = 0; l < L; ++l)
+      for (int l = 0; l < N; ++l) r.phi[d][l] += weight * feature[(i * 9 + d) * N + l];
+  }
+  for (int l = 0; l < N; ++l)
     r.theta_squared[l] = r.phi[0][l] * r.phi[0][l] + r.phi[1][l] * r.phi[1][l] + r.phi[2][l] * r.phi[2][l];
-  rodrigues_lanes<L>(r.theta_squared, r.a, r.b, r.c);
+  rodrigues_lanes<N>(r.theta_squared, r.a, r.b, r.c);
   // R = I + a [phi]_x + b [phi]_x^2.
-  for (int l = 0; l < L; ++l) {
-    const double x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l], a = r.a[l], b = r.b[l];
-    r.rot[0][l] = 1.0 - b * (y * y + z * z);
+  const Real one = 1;
+  for (int l = 0; l < N; ++l) {
+    const Real x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l], a = r.a[l], b = r.b[l];
+    r.rot[0][l] = one - b * (y * y + z * z);
     r.rot[1][l] = b * x * y - a * z;
     r.rot[2][l] = b * x * z + a * y;
     r.rot[3][l] = b * x * y + a * z;
-    r.rot[4][l] = 1.0 - b * (x * x + z * z);
+    r.rot[4][l] = one - b * (x * x + z * z);
     r.rot[5][l] = b * y * z - a * x;
     r.rot[6][l] = b * x * z - a * y;
     r.rot[7][l] = b * y * z + a * x;
-    r.rot[8][l] = 1.0 - b * (x * x + y * y);
+    r.rot[8][l] = one - b * (x * x + y * y);
   }
 }
 
 // psi = J_l(phi) u per lane, u: 3 rows of lanes.
-MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation& r, const double* u, double psi[3][L]) {
-  for (int l = 0; l < L; ++l) {
-    const double x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l];
-    const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
-    const double c0 = y * u2 - z * u1, c1 = z * u0 - x * u2, c2 = x * u1 - y * u0;
+template <typename Real, int N>
+MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation<Real, N>& r, const Real* u, Real psi[3][N]) {
+  for (int l = 0; l < N; ++l) {
+    const Real x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l];
+    const Real u0 = u[l], u1 = u[N + l], u2 = u[2 * N + l];
+    const Real c0 = y * u2 - z * u1, c1 = z * u0 - x * u2, c2 = x * u1 - y * u0;
     psi[0][l] = u0 + r.b[l] * c0 + r.c[l] * (y * c2 - z * c1);
     psi[1][l] = u1 + r.b[l] * c1 + r.c[l] * (z * c0 - x * c2);
     psi[2][l] = u2 + r.b[l] * c2 + r.c[l] * (x * c1 - y * c0);
@@ -121,91 +149,93 @@ MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation& r, const double
 
 // target = psi x m (column by column) + R d for 3 by 2 lane-minor blocks m, d (d may be null:
 // no R d term).
-MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation& r, const double psi[3][L], const double* m,
-                               const double* d, double* target) {
+template <typename Real, int N>
+MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation<Real, N>& r, const Real psi[3][N], const Real* m,
+                                           const Real* d, Real* target) {
   for (int row = 0; row < 3; ++row) {
     const int p = (row + 1) % 3, q = (row + 2) % 3;
     for (int col = 0; col < 2; ++col) {
-      const double* mp = m + (2 * p + col) * L;
-      const double* mq = m + (2 * q + col) * L;
-      double* t = target + (2 * row + col) * L;
-      for (int l = 0; l < L; ++l) t[l] = psi[p][l] * mq[l] - psi[q][l] * mp[l];
+      const Real* mp = m + (2 * p + col) * N;
+      const Real* mq = m + (2 * q + col) * N;
+      Real* t = target + (2 * row + col) * N;
+      for (int l = 0; l < N; ++l) t[l] = psi[p][l] * mq[l] - psi[q][l] * mp[l];
       if (d == nullptr) continue;
-      for (int l = 0; l < L; ++l)
-        t[l] += r.rot[3 * row][l] * d[col * L + l] + r.rot[3 * row + 1][l] * d[(2 + col) * L + l] +
-                r.rot[3 * row + 2][l] * d[(4 + col) * L + l];
+      for (int l = 0; l < N; ++l)
+        t[l] += r.rot[3 * row][l] * d[col * N + l] + r.rot[3 * row + 1][l] * d[(2 + col) * N + l] +
+                r.rot[3 * row + 2][l] * d[(4 + col) * N + l];
     }
   }
 }
 
 // x = sum over the two columns of m_col x res_col, per lane (3 rows of lanes); m, res: 3 by 2
 // lane-minor blocks. Then <res, [v]_x m> = v . x.
-MESHIK_LANE_INLINE void column_cross_sum(const double* m, const double* res, double x[3][L]) {
+template <typename Real, int N>
+MESHIK_LANE_INLINE void column_cross_sum(const Real* m, const Real* res, Real x[3][N]) {
   for (int row = 0; row < 3; ++row) {
     const int p = (row + 1) % 3, q = (row + 2) % 3;
-    for (int l = 0; l < L; ++l) {
-      double sum = 0.0;
+    for (int l = 0; l < N; ++l) {
+      Real sum = 0;
       for (int col = 0; col < 2; ++col)
-        sum += m[(2 * p + col) * L + l] * res[(2 * q + col) * L + l] -
-               m[(2 * q + col) * L + l] * res[(2 * p + col) * L + l];
+        sum += m[(2 * p + col) * N + l] * res[(2 * q + col) * N + l] -
+               m[(2 * q + col) * N + l] * res[(2 * p + col) * N + l];
       x[row][l] = sum;
     }
   }
 }
 
-// Asks the L2 cache for `count` doubles from p (a later batch's features: the hardware prefetcher
+// Asks the L2 cache for `count` values from p (a later batch's features: the hardware prefetcher
 // alone leaves the blend waiting on memory). Not into L1: there, a whole batch's lines at once
 // fill the miss buffers and stall the blend (measured on the elephant).
-MESHIK_LANE_INLINE void prefetch_doubles(const double* p, size_t count) {
-  constexpr size_t kLineDoubles = 64 / sizeof(double);
-  for (size_t e = 0; e < count; e += kLineDoubles) __builtin_prefetch(p + e, 0, 2);
+template <typename Real>
+MESHIK_LANE_INLINE void prefetch_values(const Real* p, size_t count) {
+  constexpr size_t kLineValues = 64 / sizeof(Real);
+  for (size_t e = 0; e < count; e += kLineValues) __builtin_prefetch(p + e, 0, 2);
 }
 
-MESHIK_LANE_INLINE double dot_lane(const double u[3][L], const double v[3][L], int l) {
+template <typename Real, int N>
+MESHIK_LANE_INLINE Real dot_lane(const Real u[3][N], const Real v[3][N], int l) {
   return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
 }
 
-// blend_batch's nonlinear branch, leaving the batch's rotation in r.
-MESHIK_LANE_INLINE void blend_nonlinear(const ExampleFeatures& features, const double* w, int batch,
-                                        double* out, BatchRotation& r) {
-  const int k = features.num_examples;
-  const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  if (batch + kPrefetchDistance < features.num_batches) {
-    prefetch_doubles(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
-    prefetch_doubles(basis + kPrefetchDistance * 6 * L, 6 * L);
-  }
+// The nonlinear blend of N triangles from their features (#E blocks of 9 rows) and plane basis
+// (6 rows): writes blend_batch's output (#E + 1 blocks of 6 rows of N) to out and leaves the
+// rotation in r.
+template <typename Real, int N>
+MESHIK_LANE_INLINE void blend_nonlinear(const Real* feature, const Real* basis, const double* w, int k, Real* out,
+                                        BatchRotation<Real, N>& r) {
   blend_rotation(feature, w, k, r);
   // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
-  double stretch[6 * L];
-  for (int e = 0; e < 6 * L; ++e) stretch[e] = basis[e];
-  for (int i = 0; i < k; ++i)
-    for (int e = 0; e < 6 * L; ++e) stretch[e] += w[i] * feature[(i * 9 + 3) * L + e];
-  const double zero[3][L] = {};
+  Real stretch[6 * N];
+  for (int e = 0; e < 6 * N; ++e) stretch[e] = basis[e];
+  for (int i = 0; i < k; ++i) {
+    const Real weight = static_cast<Real>(w[i]);
+    for (int e = 0; e < 6 * N; ++e) stretch[e] += weight * feature[(i * 9 + 3) * N + e];
+  }
+  const Real zero[3][N] = {};
   cross_plus_rotated(r, zero, stretch, stretch, out);
   // dF/dw_i = psi_i x F (column by column) + R D_i, psi_i = J_l(phi) phi_i, because
   // d exp(phi)/dw_i = [J_l(phi) phi_i]_x exp(phi) (so3.h).
   for (int i = 0; i < k; ++i) {
-    double psi[3][L];
-    left_jacobian_times(r, feature + i * 9 * L, psi);
-    cross_plus_rotated(r, psi, out, feature + (i * 9 + 3) * L, out + (i + 1) * 6 * L);
+    Real psi[3][N];
+    left_jacobian_times(r, feature + i * 9 * N, psi);
+    cross_plus_rotated(r, psi, out, feature + (i * 9 + 3) * N, out + (i + 1) * 6 * N);
   }
 }
 
-// blend_batch_with_curvature's second part, for the batch's rotation r and blend output out.
-MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features,
-                                               const BatchRotation& r, int batch, const double* out,
-                                               const double* residual, double* curvature_lanes) {
-  const int k = features.num_examples;
-  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  double db[L], dc[L];
-  rodrigues_derivative_lanes<L>(r.theta_squared, r.a, r.b, r.c, db, dc);
+// For N triangles with features `feature` (#E blocks of 9 rows), rotation r, blend output out
+// and residuals R_j (6 rows): adds <R_j, d2F_j/dw_a dw_b> to curvature[(a #E + b) N + l] for
+// every pair b <= a and lane l.
+template <typename Real, int N>
+MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRotation<Real, N>& r, const Real* out,
+                                      const Real* residual, Real* curvature) {
+  Real db[N], dc[N];
+  rodrigues_derivative_lanes<N>(r.theta_squared, r.a, r.b, r.c, db, dc);
   // With X(M) = sum_col M_col x R_col, <R, [v]_x M> = v . X(M), and
   //   d2F/dw_a dw_b = [d psi_a / dw_b]_x F + [psi_a]_x dF/dw_b + [psi_b]_x R D_a,
   // so <R, d2F/dw_a dw_b> = (d psi_a/dw_b) . X(F) + psi_a . X(J_b) + psi_b . X(R D_a).
-  double x_f[3][L], x_f_phi[3][L];
+  Real x_f[3][N], x_f_phi[3][N];
   column_cross_sum(out, residual, x_f);
-  for (int l = 0; l < L; ++l) {
+  for (int l = 0; l < N; ++l) {
     x_f_phi[0][l] = x_f[1][l] * r.phi[2][l] - x_f[2][l] * r.phi[1][l];
     x_f_phi[1][l] = x_f[2][l] * r.phi[0][l] - x_f[0][l] * r.phi[2][l];
     x_f_phi[2][l] = x_f[0][l] * r.phi[1][l] - x_f[1][l] * r.phi[0][l];
@@ -213,54 +243,64 @@ MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features,
   // psi_b, X(J_b) and phi . phi_b for a chunk of up to kChunk examples b, then every a >= b
   // against the chunk (the second derivatives are symmetric in a and b).
   constexpr int kChunk = 8;
-  double psi_chunk[kChunk][3][L], x_j_chunk[kChunk][3][L], phi_v_chunk[kChunk][L];
+  const Real two = 2;
+  Real psi_chunk[kChunk][3][N], x_j_chunk[kChunk][3][N], phi_v_chunk[kChunk][N];
   for (int b0 = 0; b0 < k; b0 += kChunk) {
     const int chunk = k - b0 < kChunk ? k - b0 : kChunk;
     for (int i = 0; i < chunk; ++i) {
-      const double* v = feature + (b0 + i) * 9 * L;  // phi_b
+      const Real* v = feature + (b0 + i) * 9 * N;  // phi_b
       left_jacobian_times(r, v, psi_chunk[i]);
-      column_cross_sum(out + (b0 + i + 1) * 6 * L, residual, x_j_chunk[i]);
-      for (int l = 0; l < L; ++l)
-        phi_v_chunk[i][l] =
-            r.phi[0][l] * v[l] + r.phi[1][l] * v[L + l] + r.phi[2][l] * v[2 * L + l];
+      column_cross_sum(out + (b0 + i + 1) * 6 * N, residual, x_j_chunk[i]);
+      for (int l = 0; l < N; ++l)
+        phi_v_chunk[i][l] = r.phi[0][l] * v[l] + r.phi[1][l] * v[N + l] + r.phi[2][l] * v[2 * N + l];
     }
     for (int a = b0; a < k; ++a) {
-      const double* u = feature + a * 9 * L;  // phi_a
-      double psi_a[3][L], x_rd[3][L], rotated_d[6 * L];
+      const Real* u = feature + a * 9 * N;  // phi_a
+      Real psi_a[3][N], x_rd[3][N], rotated_d[6 * N];
       left_jacobian_times(r, u, psi_a);
       // R D_a = J_a - psi_a x F.
-      cross_plus_rotated(r, psi_a, out, nullptr, rotated_d);
-      for (int e = 0; e < 6 * L; ++e) rotated_d[e] = out[(a + 1) * 6 * L + e] - rotated_d[e];
+      cross_plus_rotated(r, psi_a, out, static_cast<const Real*>(nullptr), rotated_d);
+      for (int e = 0; e < 6 * N; ++e) rotated_d[e] = out[(a + 1) * 6 * N + e] - rotated_d[e];
       column_cross_sum(rotated_d, residual, x_rd);
       // (d psi_a / dw_b) . x, with psi_a = u + b phi x u + c phi x (phi x u) and d phi / dw_b = v:
       //   2 (phi . v) (db pu . x + dc pu . (x x phi))
       //   + b (v x u) . x + c ((v x pu) . x + (v x u) . (x x phi)),       pu = phi x u,
       // is (phi . v) s + v . t with, per a, s = 2 (db pu . x + dc pu . (x x phi)) and
       // t = b (u x x) + c (pu x x + u x (x x phi)) (triple products rotated to isolate v).
-      double s_a[L], t_a[3][L];
-      for (int l = 0; l < L; ++l) {
-        const double px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
-        const double u0 = u[l], u1 = u[L + l], u2 = u[2 * L + l];
-        const double x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
-        const double y0 = x_f_phi[0][l], y1 = x_f_phi[1][l], y2 = x_f_phi[2][l];
-        const double pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
-        const double pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2, pu_y = pu0 * y0 + pu1 * y1 + pu2 * y2;
-        s_a[l] = 2.0 * (db[l] * pu_x + dc[l] * pu_y);
-        const double b = r.b[l], c = r.c[l];
+      Real s_a[N], t_a[3][N];
+      for (int l = 0; l < N; ++l) {
+        const Real px = r.phi[0][l], py = r.phi[1][l], pz = r.phi[2][l];
+        const Real u0 = u[l], u1 = u[N + l], u2 = u[2 * N + l];
+        const Real x0 = x_f[0][l], x1 = x_f[1][l], x2 = x_f[2][l];
+        const Real y0 = x_f_phi[0][l], y1 = x_f_phi[1][l], y2 = x_f_phi[2][l];
+        const Real pu0 = py * u2 - pz * u1, pu1 = pz * u0 - px * u2, pu2 = px * u1 - py * u0;
+        const Real pu_x = pu0 * x0 + pu1 * x1 + pu2 * x2, pu_y = pu0 * y0 + pu1 * y1 + pu2 * y2;
+        s_a[l] = two * (db[l] * pu_x + dc[l] * pu_y);
+        const Real b = r.b[l], c = r.c[l];
         t_a[0][l] = b * (u1 * x2 - u2 * x1) + c * (pu1 * x2 - pu2 * x1 + u1 * y2 - u2 * y1);
         t_a[1][l] = b * (u2 * x0 - u0 * x2) + c * (pu2 * x0 - pu0 * x2 + u2 * y0 - u0 * y2);
         t_a[2][l] = b * (u0 * x1 - u1 * x0) + c * (pu0 * x1 - pu1 * x0 + u0 * y1 - u1 * y0);
       }
       for (int i = 0; i < chunk && b0 + i <= a; ++i) {
         const int b = b0 + i;
-        const double* v = feature + b * 9 * L;  // phi_b
-        double* acc = curvature_lanes + (a * k + b) * L;
-        for (int l = 0; l < L; ++l)
-          acc[l] += phi_v_chunk[i][l] * s_a[l] + v[l] * t_a[0][l] + v[L + l] * t_a[1][l] +
-                    v[2 * L + l] * t_a[2][l] + dot_lane(psi_a, x_j_chunk[i], l) +
+        const Real* v = feature + b * 9 * N;  // phi_b
+        Real* acc = curvature + (a * k + b) * N;
+        for (int l = 0; l < N; ++l)
+          acc[l] += phi_v_chunk[i][l] * s_a[l] + v[l] * t_a[0][l] + v[N + l] * t_a[1][l] +
+                    v[2 * N + l] * t_a[2][l] + dot_lane(psi_a, x_j_chunk[i], l) +
                     dot_lane(psi_chunk[i], x_rd, l);
       }
     }
+  }
+}
+
+// Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
+// rows of 2 kLanes floats, the first batch's lanes first.
+MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
+  for (int row = 0; row < rows; ++row) {
+    for (int l = 0; l < L; ++l) out[row * 2 * L + l] = static_cast<float>(first[row * L + l]);
+    for (int l = 0; l < L; ++l)
+      out[row * 2 * L + L + l] = second != nullptr ? static_cast<float>(second[row * L + l]) : 0.0f;
   }
 }
 
@@ -269,9 +309,9 @@ MESHIK_LANE_INLINE void add_residual_curvature(const ExampleFeatures& features,
 MESHIK_SIMD_CLONES
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out) {
+  const int k = features.num_examples;
+  const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
   if (space == FeatureSpace::kLinear) {
-    const int k = features.num_examples;
-    const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
     const double* lin = features.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
     for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
     for (int i = 0; i < k; ++i)
@@ -281,16 +321,41 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
       }
     return;
   }
-  BatchRotation r;
-  blend_nonlinear(features, w, batch, out, r);
+  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  if (batch + kPrefetchDistance < features.num_batches) {
+    prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
+    prefetch_values(basis + kPrefetchDistance * 6 * L, 6 * L);
+  }
+  BatchRotation<double, L> r;
+  blend_nonlinear(feature, basis, w, k, out, r);
 }
 
 MESHIK_SIMD_CLONES
-void blend_batch_with_curvature(const ExampleFeatures& features, const double* w, int batch,
-                                const double* residual, double* out, double* curvature_lanes) {
-  BatchRotation r;
-  blend_nonlinear(features, w, batch, out, r);
-  add_residual_curvature(features, r, batch, out, residual, curvature_lanes);
+void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch, const double* residual,
+                            float* scratch, double* curvature_lanes) {
+  constexpr int N = kCurvatureBatches * L;
+  static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
+  const int k = features.num_examples;
+  const int pair = batch / kCurvatureBatches;
+  const int pairs = (features.num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
+  const float* feature = features.nonlinear_single.data() + static_cast<size_t>(pair) * k * 9 * N;
+  const float* basis = features.plane_basis_single.data() + static_cast<size_t>(pair) * 6 * N;
+  if (pair + kPrefetchDistance < pairs) {
+    prefetch_values(feature + kPrefetchDistance * k * 9 * N, static_cast<size_t>(k) * 9 * N);
+    prefetch_values(basis + kPrefetchDistance * 6 * N, 6 * N);
+  }
+  // scratch: residual (6 rows), blend output ((#E + 1) 6 rows), curvature (#E #E rows).
+  float* narrow_residual = scratch;
+  float* out = narrow_residual + 6 * N;
+  float* curvature = out + (k + 1) * 6 * N;
+  narrow_pair(residual, batch + 1 < features.num_batches ? residual + 6 * L : nullptr, 6, narrow_residual);
+  for (int e = 0; e < k * k * N; ++e) curvature[e] = 0.0f;
+  BatchRotation<float, N> r;
+  blend_nonlinear(feature, basis, w, k, out, r);
+  add_curvature(feature, k, r, out, narrow_residual, curvature);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b <= a; ++b)
+      for (int l = 0; l < N; ++l) curvature_lanes[(a * k + b) * L + l % L] += curvature[(a * k + b) * N + l];
 }
 
 }  // namespace meshik

@@ -237,6 +237,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
       jts_lanes_(static_cast<size_t>(set.num_examples) * L),
       curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
+      curvature_scratch_(curvature_scratch_size(set.num_examples)),
       outer_products_(static_cast<size_t>(3 * set.num_examples) *
                       row_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
@@ -356,12 +357,10 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
-  double* out = batch_out_.data();
-  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
-    blend_batch_with_curvature(set_.features, at.weights.data(), batch,
-                               residual_.data() + static_cast<size_t>(batch) * 6 * L, out,
-                               curvature_lanes_.data());
-  }
+  for (int batch = 0; batch < set_.features.num_batches; batch += kCurvatureBatches)
+    add_residual_curvature(set_.features, at.weights.data(), batch,
+                           residual_.data() + static_cast<size_t>(batch) * 6 * L, curvature_scratch_.data(),
+                           curvature_lanes_.data());
   for (int a = 0; a < k; ++a)
     for (int b = 0; b <= a; ++b) {
       double sum = 0.0;

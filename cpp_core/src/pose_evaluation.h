@@ -98,6 +98,7 @@ class PoseEvaluator {
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
   std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane
+  std::vector<float> curvature_scratch_;  // curvature_scratch_size(#E): add_residual_curvature's
   std::vector<double> outer_products_;   // 3 #E by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
   Eigen::MatrixXd jtj_;                  // #E by #E
   Eigen::VectorXd jts_;                  // #E: J^T s

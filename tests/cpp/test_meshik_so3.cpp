@@ -114,6 +114,36 @@ TEST(So3, VectorisedSineAndCosineMatchTheLibrary) {
   }
 }
 
+// The single-precision lanes (the curvature pass's) to within a few float roundings.
+TEST(So3, SinglePrecisionLanesMatchTheLibrary) {
+  constexpr int kLanes = 16;
+  float x[kLanes], s[kLanes], c[kLanes], a[kLanes], b[kLanes], cc[kLanes];
+  for (int start = 0; start < 1000; start += kLanes) {
+    for (int l = 0; l < kLanes; ++l) x[l] = static_cast<float>((start + l) * 0.01 + 1e-3 * l);
+    meshik::sin_cos_lanes<kLanes>(x, s, c);
+    for (int l = 0; l < kLanes; ++l) {
+      EXPECT_NEAR(s[l], std::sin(static_cast<double>(x[l])), 4e-7) << x[l];
+      EXPECT_NEAR(c[l], std::cos(static_cast<double>(x[l])), 4e-7) << x[l];
+    }
+    float theta_squared[kLanes];
+    for (int l = 0; l < kLanes; ++l) theta_squared[l] = x[l] * x[l] * 0.1f;
+    meshik::rodrigues_lanes<kLanes>(theta_squared, a, b, cc);
+    for (int l = 0; l < kLanes; ++l) {
+      const meshik::RodriguesCoefficients exact = meshik::rodrigues_coefficients(theta_squared[l]);
+      EXPECT_NEAR(a[l], exact.a, 1e-6) << theta_squared[l];
+      EXPECT_NEAR(b[l], exact.b, 1e-6) << theta_squared[l];
+      EXPECT_NEAR(cc[l], exact.c, 1e-5 * exact.c) << theta_squared[l];
+      float db, dc;
+      meshik::rodrigues_derivative_lanes<1>(&theta_squared[l], &a[l], &b[l], &cc[l], &db, &dc);
+      const double t2 = theta_squared[l];
+      double exact_db, exact_dc;
+      meshik::rodrigues_derivative_lanes<1>(&t2, &exact.a, &exact.b, &exact.c, &exact_db, &exact_dc);
+      EXPECT_NEAR(db, exact_db, 1e-4 * std::abs(exact_db)) << theta_squared[l];
+      EXPECT_NEAR(dc, exact_dc, 1e-4 * std::abs(exact_dc)) << theta_squared[l];
+    }
+  }
+}
+
 TEST(So3, PolarDecompositionIsProperEvenForReflectionsAndDegenerateMatrices) {
   std::mt19937 random(11);
   std::normal_distribution<double> normal;
