@@ -196,8 +196,13 @@ void backward_chunk(const Analysis& analysis, const FactorValues& factor, double
     const int* rows = f.rows.data() + f.row_start[s];
     const double* block = values + f.value_start[s];
     double* xs = x + f.first_column[s] * stride;
-    int j = 0;
-    for (; j + kGroup <= k; j += kGroup) update_from_rows_below<V, kGroup>(block, k, r, j, rows, xs, x, stride);
+    int j = 0;  // columns in groups of 2 kGroup (each row below loaded once per group), then kGroup
+    for (; j + 2 * kGroup <= k; j += 2 * kGroup)
+      update_from_rows_below<V, 2 * kGroup>(block, k, r, j, rows, xs, x, stride);
+    if (j + kGroup <= k) {
+      update_from_rows_below<V, kGroup>(block, k, r, j, rows, xs, x, stride);
+      j += kGroup;
+    }
     update_last_from_rows_below<V>(k - j, block, k, r, j, rows, xs, x, stride);
     diagonal_backward<V>(block, k, r, xs, stride);
   }
