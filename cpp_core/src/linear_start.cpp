@@ -20,16 +20,17 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) 
   affine_ = Eigen::MatrixXd::Zero(3 * num_handles, k);
   if (k == 0) return;
 
-  // All handles at the origin: the evaluation gives S, g_U, and Z = K'^{-1} G'^T L.
+  // All handles at the origin: the Gauss-Newton system gives S and g_U, then Z = K'^{-1} G'^T L
+  // on the unknowns coupled to a handle (the backward solve along their tree paths only).
   const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
   EvaluationBuffers buffers;
   PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers);
-  evaluator.keep_jacobian_solution();
   PoseEvaluation at_rest;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
-  evaluator.evaluate(zero.data(), true, at_rest);
+  evaluator.evaluate_system(zero.data(), at_rest);
   schur_ = at_rest.schur;
   rest_gradient_ = at_rest.step_rhs;
+  evaluator.solve_jacobian_rows(system.coupling_row());
 
   // -Z^T K_fh x_h: only the rows of Z coupled to a handle.
   for (int h = 0; h < num_handles; ++h)

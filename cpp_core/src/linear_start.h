@@ -21,8 +21,9 @@ namespace meshik {
 
 class LinearStart {
  public:
-  // set / system: the example set and its factored handle system. One evaluation (a solve with
-  // 3 (#E + 1) right-hand sides).
+  // set / system: the example set and its factored handle system. One Gauss-Newton system (the
+  // forward solve of 3 (#E + 1) right-hand sides) and the backward solve on the handles' tree
+  // paths.
   LinearStart(const ExampleSet::Impl& set, const PoseSystem& system);
 
   // targets: #H by 3 handle positions; regularization: kappa >= 0. Returns #E weights.

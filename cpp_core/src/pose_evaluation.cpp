@@ -350,7 +350,7 @@ double PoseEvaluator::residual_energy(const double* vertices, std::vector<int>& 
 }
 
 void PoseEvaluator::add_second_order(PoseEvaluation& at) {
-  if (at.evaluation != evaluations_)
+  if (at.evaluation == 0 || at.evaluation != evaluations_)
     throw std::logic_error("PoseEvaluator::add_second_order: not the evaluator's last evaluation");
   const int k = set_.num_examples;
   at.second_order.setZero(k, k);
@@ -369,42 +369,55 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
     }
 }
 
-void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   const int k = set_.num_examples;
-  const int n_unknowns = system_.num_unknowns();
   const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
   stride_ = row_width(nrhs);
   assemble(weights, with_jacobian);
   system_.forward_solve(rhs_, stride_, nrhs);
+  out.weights.assign(weights, weights + k);
+  if (!with_jacobian) return;
   // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
   // the outer products of the forward-solved rows, summed over the coordinates.
   Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
   Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
-  if (with_jacobian) {
-    std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
-    add_outer_products(rhs_, 0, n_unknowns, nrhs, stride_, outer_products_.data());
-    for (int c = 0; c < 3; ++c)
-      for (int a = 0; a < k; ++a) {
-        const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;
-        htx(a) += p[c];
-        for (int b = 0; b < k; ++b) hth(a, b) += p[3 + c * k + b];
-      }
-  }
-  system_.backward_solve(rhs_, stride_, with_jacobian && keep_jacobian_solution_ ? nrhs : 3);
+  std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
+  add_outer_products(rhs_, 0, system_.num_unknowns(), nrhs, stride_, outer_products_.data());
+  for (int c = 0; c < 3; ++c)
+    for (int a = 0; a < k; ++a) {
+      const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;
+      htx(a) += p[c];
+      for (int b = 0; b < k; ++b) hth(a, b) += p[3 + c * k + b];
+    }
+  const Eigen::Map<const Eigen::VectorXd> w(weights, k);
+  out.schur = jtj_ - 0.5 * (hth + hth.transpose());
+  out.schur.diagonal().array() += regularization_;
+  out.step_rhs = htx - jts_ - regularization_ * w;
+}
 
-  out.weights.assign(weights, weights + k);
+void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+  assemble_and_forward_solve(weights, with_jacobian, out);
+  system_.backward_solve(rhs_, stride_, 3);
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
   gather_vertices(out.vertices.data());
-  const Eigen::Map<const Eigen::VectorXd> w(weights, k);
+  const Eigen::Map<const Eigen::VectorXd> w(weights, set_.num_examples);
   out.energy =
       residual_energy(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
   out.evaluation = ++evaluations_;
-  if (!with_jacobian) return;
+}
 
-  out.schur = jtj_ - 0.5 * (hth + hth.transpose());
-  out.schur.diagonal().array() += regularization_;
-  out.step_rhs = htx - jts_ - regularization_ * w;
+void PoseEvaluator::solve_jacobian_rows(const std::vector<int>& rows) {
+  system_.backward_solve_rows(rhs_, stride_, 3 * (set_.num_examples + 1), rows);
+}
+
+void PoseEvaluator::evaluate_system(const double* weights, PoseEvaluation& out) {
+  assemble_and_forward_solve(weights, true, out);
+  out.vertices.clear();
+  out.inverted_triangles.clear();
+  out.energy = 0.0;
+  out.has_second_order = false;
+  out.evaluation = 0;  // no pose: add_second_order refuses it
 }
 
 }  // namespace meshik

@@ -55,10 +55,13 @@ class PoseEvaluator {
   // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
 
-  // Makes later evaluations with the Jacobian also finish the solve of its columns, for
-  // jacobian_solution() (the Gauss-Newton system itself needs only their forward half).
-  void keep_jacobian_solution() { keep_jacobian_solution_ = true; }
-  // After such an evaluation: #E values of Z = K'^{-1} G'^T J for unknown u, coordinate c.
+  // Only the Gauss-Newton system at weights (#E): fills out.weights, out.schur and out.step_rhs
+  // (no pose, energy or backward solve; out.evaluation = 0, so add_second_order refuses it).
+  void evaluate_system(const double* weights, PoseEvaluation& out);
+  // After evaluate_system: finishes the solve of the Jacobian's columns on the unknowns `rows`
+  // (factor order) only, along their elimination-tree paths.
+  void solve_jacobian_rows(const std::vector<int>& rows);
+  // Then, for those unknowns u: #E values of Z = K'^{-1} G'^T J for coordinate c.
   const double* jacobian_solution(int unknown, int c) const {
     return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * set_.num_examples;
   }
@@ -72,6 +75,9 @@ class PoseEvaluator {
   // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
   // G'^T s and G'^T J into rhs_ (rows of stride_ doubles).
   void assemble(const double* weights, bool with_jacobian);
+  // assemble(), the forward solve, and with the Jacobian the Gauss-Newton system (out.weights,
+  // out.schur, out.step_rhs).
+  void assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
   void gather_vertices(double* vertices) const;
   // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble(); replaces F
@@ -94,7 +100,6 @@ class PoseEvaluator {
   // 3 + c #E + a; solved in place (x0 in the first 3 columns).
   double* rhs_ = nullptr;
   int stride_ = 0;  // of the last evaluation: 3 or 3 (#E + 1) columns rounded up to kLanes
-  bool keep_jacobian_solution_ = false;
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
   std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane

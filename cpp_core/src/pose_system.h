@@ -53,6 +53,10 @@ class PoseSystem {
   void backward_solve(double* x, int stride, int columns) const {
     if (num_unknowns_ > 0) factor_.backward_solve_in_order(x, stride, columns);
   }
+  // backward_solve exact on the unknowns `rows` only (SparseCholesky::backward_solve_rows_in_order).
+  void backward_solve_rows(double* x, int stride, int columns, const std::vector<int>& rows) const {
+    if (num_unknowns_ > 0) factor_.backward_solve_rows_in_order(x, stride, columns, rows);
+  }
 
   long long factor_nonzeros() const { return factor_.factor_nonzeros(); }
 

@@ -117,6 +117,40 @@ TEST(SparseCholeskyMesh, HorseHandleSetsShareTheMeshOrder) {
   }
 }
 
+// The backward half asked for a few rows: those equal the full backward half's, and rows off
+// their tree paths keep their values. The sphere's kept form starts with a simplicial prefix
+// (its 4th vertices, among the asked rows); the grid and a random matrix have none.
+TEST(SparseCholeskyMesh, BackwardHalfOnChosenRowsMatchesTheFullOne) {
+  const auto sphere = meshik_bench::geodesic_sphere(8);
+  const std::vector<int> handles = meshik_bench::spread_handles(sphere.num_vertices(), 12);
+  for (const CscMatrix& a : {meshik_bench::deformation_normal_matrix(sphere, handles, true),
+                             grid_laplacian(31, 27, 0.1), lower_from_dense(random_spd(40, 0.1, 7))}) {
+    SparseCholesky chol;
+    chol.compute(a);
+    const int n = a.rows, nrhs = 5, stride = SparseCholesky::padded_width(nrhs);
+    std::vector<double> full = random_values(static_cast<size_t>(n) * stride, 12);
+    chol.forward_solve_in_order(full.data(), stride, nrhs);
+    std::vector<double> chosen = full;
+    const std::vector<int> rows = {n / 7, n / 3, n / 3 + 1, n - 2};
+    chol.backward_solve_rows_in_order(chosen.data(), stride, nrhs, rows);
+    const std::vector<double> forward = full;
+    chol.backward_solve_in_order(full.data(), stride, nrhs);
+    int kept = 0;  // rows off the paths
+    for (int r = 0; r < n; ++r) {
+      const bool asked = std::find(rows.begin(), rows.end(), r) != rows.end();
+      bool unchanged = true;
+      for (int c = 0; c < nrhs; ++c) {
+        const size_t at = static_cast<size_t>(r) * stride + c;
+        if (asked) ASSERT_NEAR(chosen[at], full[at], 1e-12 * (1.0 + std::abs(full[at]))) << "row " << r;
+        unchanged = unchanged && chosen[at] == forward[at];
+      }
+      if (unchanged) ++kept;
+    }
+    if (n > 100) EXPECT_GT(kept, n / 2) << "the paths should be a small part of a mesh's factor";
+    EXPECT_THROW(chol.backward_solve_rows_in_order(chosen.data(), stride, nrhs, {n}), std::invalid_argument);
+  }
+}
+
 TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
   const auto horse = horse_or_empty();
   if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";

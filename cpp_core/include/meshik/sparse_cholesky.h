@@ -88,6 +88,12 @@ class SparseCholesky {
   // stride or column count.
   void forward_solve_in_order(double* x, int stride, int columns) const;
   void backward_solve_in_order(double* x, int stride, int columns) const;
+  // backward_solve_in_order where only the rows `rows` (factor order, each in [0, n)) of the
+  // result are wanted: runs the pass over their elimination-tree paths to the roots only, which
+  // overwrites those rows exactly, and the paths' other rows too; x's rows off the paths are left
+  // as they were. Throws as backward_solve_in_order, and std::invalid_argument for a row out of
+  // range.
+  void backward_solve_rows_in_order(double* x, int stride, int columns, const std::vector<int>& rows) const;
 
   int size() const;
   long long factor_nonzeros() const;  // nnz(L), diagonal included

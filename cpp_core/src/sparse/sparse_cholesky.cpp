@@ -131,6 +131,16 @@ void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns)
   backward_solve(impl_->analysis, impl_->factor, x, stride, columns);
 }
 
+void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int columns,
+                                                  const std::vector<int>& rows) const {
+  check_in_order_arguments(impl_->factorized, stride, columns);
+  for (int r : rows)
+    if (r < 0 || r >= size())
+      throw std::invalid_argument("SparseCholesky: backward solve row " + std::to_string(r) + " out of range [0, " +
+                                  std::to_string(size()) + ")");
+  backward_solve(impl_->analysis, impl_->factor, reach_to_roots(impl_->analysis, rows), x, stride, columns);
+}
+
 int SparseCholesky::size() const { return static_cast<int>(impl_->analysis.perm.size()); }
 
 long long SparseCholesky::factor_nonzeros() const { return impl_->analysis.factor_nonzeros; }

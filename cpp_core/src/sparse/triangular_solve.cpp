@@ -149,8 +149,10 @@ void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, doubl
 // Backward pass over the simplicial prefix (last column first) for one chunk:
 // x_u = (x_u - sum_r L(r, u) x_r) / L(u, u).
 template <int V>
-void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
+void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, const Reach* reach, double* x,
+                     long stride) {
   for (int u = p.size - 1; u >= 0; --u) {
+    if (reach != nullptr && !reach->row[u]) continue;
     double* xu = x + u * stride;
     Rows<V, 1> acc;
     acc.load_from(&xu);
@@ -185,12 +187,15 @@ void forward_chunk(const Analysis& analysis, const FactorValues& factor, double*
   }
 }
 
-// Backward pass (supernodes from the last, then the prefix) for one chunk.
+// Backward pass (supernodes from the last, then the prefix) for one chunk; with a reach, only
+// over its part.
 template <int V>
-void backward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+void backward_chunk(const Analysis& analysis, const FactorValues& factor, const Reach* reach, double* x,
+                    long stride) {
   const SymbolicFactor& f = analysis.symbolic;
   const double* values = factor.supernodal.data();
   for (int s = f.num_supernodes() - 1; s >= 0; --s) {
+    if (reach != nullptr && !reach->supernode[s]) continue;
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
     const int* rows = f.rows.data() + f.row_start[s];
@@ -206,7 +211,7 @@ void backward_chunk(const Analysis& analysis, const FactorValues& factor, double
     update_last_from_rows_below<V>(k - j, block, k, r, j, rows, xs, x, stride);
     diagonal_backward<V>(block, k, r, xs, stride);
   }
-  prefix_backward<V>(analysis.prefix, factor, x, stride);
+  prefix_backward<V>(analysis.prefix, factor, reach, x, stride);
 }
 
 // Most vectors per chunk: 16 right-hand sides.
@@ -214,30 +219,33 @@ constexpr int kMaxVectors = 16 / kLanes;
 
 template <int V>
 struct Forward {
-  // Runs forward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
+  // Runs forward_chunk<vectors> (vectors <= V); the forward pass has no reach.
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach*, double* x,
+                       long stride) {
     if (vectors == V) forward_chunk<V>(a, factor, x, stride);
-    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, x, stride);
+    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, nullptr, x, stride);
   }
 };
 
 template <int V>
 struct Backward {
   // Runs backward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, double* x, long stride) {
-    if (vectors == V) backward_chunk<V>(a, factor, x, stride);
-    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, x, stride);
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach* reach, double* x,
+                       long stride) {
+    if (vectors == V) backward_chunk<V>(a, factor, reach, x, stride);
+    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, reach, x, stride);
   }
 };
 
 // Runs Pass on chunks of at most kMaxVectors vectors covering the first `columns` (rounded up to
 // whole vectors) of each row.
 template <template <int> class Pass>
-void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int stride, int columns) {
+void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach, double* x, int stride,
+               int columns) {
   const int width = round_up_to_lanes(columns);
   for (int c0 = 0; c0 < width; c0 += kMaxVectors * kLanes) {
     const int vectors = (width - c0) / kLanes < kMaxVectors ? (width - c0) / kLanes : kMaxVectors;
-    Pass<kMaxVectors>::dispatch(vectors, a, factor, x + c0, stride);
+    Pass<kMaxVectors>::dispatch(vectors, a, factor, reach, x + c0, stride);
   }
 }
 
@@ -245,12 +253,38 @@ void by_chunks(const Analysis& a, const FactorValues& factor, double* x, int str
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
                    int columns) {
-  by_chunks<Forward>(analysis, factor, x, stride, columns);
+  by_chunks<Forward>(analysis, factor, nullptr, x, stride, columns);
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
                     int columns) {
-  by_chunks<Backward>(analysis, factor, x, stride, columns);
+  by_chunks<Backward>(analysis, factor, nullptr, x, stride, columns);
+}
+
+Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
+  const SimplicialPrefix& p = analysis.prefix;
+  const SymbolicFactor& f = analysis.symbolic;
+  Reach reach;
+  reach.row.assign(analysis.perm.size(), 0);
+  reach.supernode.assign(f.num_supernodes(), 0);
+  for (int r : rows) reach.row[r] = 1;
+  // A reached column's rows below are reached (they come later, so one pass in order suffices).
+  for (int u = 0; u < p.size; ++u)
+    if (reach.row[u])
+      for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t) reach.row[p.rows[t]] = 1;
+  for (int s = 0; s < f.num_supernodes(); ++s) {
+    for (int j = f.first_column[s]; j < f.first_column[s + 1] && !reach.supernode[s]; ++j)
+      reach.supernode[s] = reach.row[j];
+    if (!reach.supernode[s]) continue;
+    for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) reach.row[j] = 1;
+    for (int t = f.row_start[s]; t < f.row_start[s + 1]; ++t) reach.row[f.rows[t]] = 1;
+  }
+  return reach;
+}
+
+void backward_solve(const Analysis& analysis, const FactorValues& factor, const Reach& reach, double* x,
+                    int stride, int columns) {
+  by_chunks<Backward>(analysis, factor, &reach, x, stride, columns);
 }
 
 }  // namespace meshik::sparse

@@ -2,6 +2,8 @@
 // sides at once.
 #pragma once
 
+#include <vector>
+
 #include "sparse/analysis.h"
 #include "sparse/numeric.h"
 
@@ -16,5 +18,19 @@ void forward_solve(const Analysis& analysis, const FactorValues& factor, double*
 // As forward_solve, with L^{-T} x.
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
                     int columns);
+
+// The rows (factor order) and supernodes on the elimination-tree paths from `rows` to the roots:
+// row i of L^{-T} x depends only on x's rows on i's path, so the backward pass over this part
+// alone gives those rows exactly.
+struct Reach {
+  std::vector<char> row;        // n: on a path
+  std::vector<char> supernode;  // #supernodes: holds a column on a path
+};
+Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows);
+
+// backward_solve over the part of the factor in `reach` only: overwrites the reached rows of x
+// with those of L^{-T} x and leaves the others as they were.
+void backward_solve(const Analysis& analysis, const FactorValues& factor, const Reach& reach, double* x,
+                    int stride, int columns);
 
 }  // namespace meshik::sparse
