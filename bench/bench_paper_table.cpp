@@ -1,9 +1,9 @@
 // The paper's timing table (Sumner et al. 2005, Table 1) beside MeshIK's own figures on the same
 // meshes: lion, horse and elephant from --data (../shared/data) and the generated example sets in
 // --samples (sample_meshes/). Single thread. For each mesh:
-//   Factor  = building the Solver for a handle set (assembly of G'^T G', its symbolic analysis in
-//             the mesh's fill-reducing order that the ExampleSet computed once, the numeric
-//             factorization, and the linear start's one evaluation),
+//   Factor  = building the Solver for a handle set (assembly of G'^T G' with identity rows for the
+//             handles, its numeric factorization on the mesh's pattern, whose ordering and
+//             symbolic analysis the ExampleSet did once, and the linear start),
 //   Solve   = one Gauss-Newton iteration (a solve stopped after one iteration minus one stopped
 //             before the first: the second-order pass, one evaluation with its solve, the step),
 //   Total   = one whole pose, from the linear-space start weights to convergence,
@@ -298,7 +298,7 @@ int main(int argc, char** argv) {
   std::printf("\nPaper rows: Bar 132/260/2, Flag 516/932/14, Lion 5,000/9,996/10, Horse 8,425/16,846/4, "
               "Elephant 42,321/84,638/4.\n"
               "xFactor/xSolve/xTotal: paper time / our time. Precomp: ExampleSet (features of all examples,\n"
-              "the mesh's fill-reducing order).\n"
+              "the analysis of the mesh's system).\n"
               "Kept4th: our factorization of G'^T G' with the fourth vertices kept as unknowns and its own\n"
               "ordering (ms), the in-run comparison for Factor. RMS err: RMS vertex distance to the held-out pose / bbox diagonal.\n");
   for (const Case& c : cases) std::printf("  %s\n", c.note.c_str());

@@ -32,23 +32,6 @@ std::vector<double> ExampleSet::Impl::to_user(const std::vector<double>& positio
 
 namespace {
 
-// k: K (#V by #V); components: its vertices' components. Returns the vertices used by triangles
-// in SparseCholesky's fill-reducing order of K restricted to them.
-std::vector<int> vertex_elimination_order(const CscMatrix& k, const VertexComponents& components) {
-  std::vector<int> unknown_of_vertex(components.component_of_vertex.size(), -1);
-  std::vector<int> vertex_of_unknown;
-  for (size_t v = 0; v < unknown_of_vertex.size(); ++v)
-    if (components.component_of_vertex[v] >= 0) {
-      unknown_of_vertex[v] = static_cast<int>(vertex_of_unknown.size());
-      vertex_of_unknown.push_back(static_cast<int>(v));
-    }
-  const int n = static_cast<int>(vertex_of_unknown.size());
-  if (n == 0) return {};
-  std::vector<int> order = SparseCholesky::fill_reducing_order(restricted_lower(k, unknown_of_vertex, n));
-  for (int& u : order) u = vertex_of_unknown[u];
-  return order;
-}
-
 // Fills the per-component rest centroids and example centroid shifts of impl.
 void compute_centroids(ExampleSet::Impl& impl, const std::vector<const double*>& examples) {
   const int count = impl.components.count;
@@ -117,7 +100,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress);
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
-  impl.vertex_elimination_order = vertex_elimination_order(impl.normal_matrix, impl.components);
+  const CscMatrix system_lower = mesh_system_lower(impl);
+  if (system_lower.rows > 0) impl.system_analysis.analyze(system_lower);
   compute_centroids(impl, example_pointers);
 }
 

@@ -32,9 +32,9 @@ struct ExampleSet::Impl {
   TriangleFrames frames;
   ExampleFeatures features;
   CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
-  // The vertices used by triangles in a fill-reducing elimination order of K: every handle
-  // set's system is factored in it (restricted to its unknowns), so no ordering runs per set.
-  std::vector<int> vertex_elimination_order;
+  // The analysis (ordering and symbolic factorization) of the pattern every handle set's system
+  // has (mesh_system_lower, pose_system.h): done once here, shared by every PoseSystem.
+  SparseCholesky system_analysis;
   // Per component c: the rest centroid (3) and each example's centroid minus it (#E by 3), so
   // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
   std::vector<double> rest_centroid;   // #components by 3

@@ -77,19 +77,19 @@ CscMatrix eliminated_normal_matrix(const TriangleFrames& frames, const int* tria
   return k;
 }
 
-CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& unknown_of_vertex, int num_unknowns) {
+CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& row_of_vertex, int num_rows) {
   // Increasing vertex order keeps row >= col for the lower triangle.
   CscMatrix lower;
-  lower.rows = lower.cols = num_unknowns;
-  lower.col_start.reserve(num_unknowns + 1);
-  lower.row_index.reserve(k.row_index.size() / 2 + unknown_of_vertex.size());
-  lower.values.reserve(k.row_index.size() / 2 + unknown_of_vertex.size());
+  lower.rows = lower.cols = num_rows;
+  lower.col_start.reserve(num_rows + 1);
+  lower.row_index.reserve(k.row_index.size() / 2 + row_of_vertex.size());
+  lower.values.reserve(k.row_index.size() / 2 + row_of_vertex.size());
   lower.col_start.push_back(0);
-  for (size_t v = 0; v < unknown_of_vertex.size(); ++v) {
-    const int col = unknown_of_vertex[v];
+  for (size_t v = 0; v < row_of_vertex.size(); ++v) {
+    const int col = row_of_vertex[v];
     if (col < 0) continue;
     for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
-      const int row = unknown_of_vertex[k.row_index[s]];
+      const int row = row_of_vertex[k.row_index[s]];
       if (row >= col) {
         lower.row_index.push_back(row);
         lower.values.push_back(k.values[s]);

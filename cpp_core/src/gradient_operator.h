@@ -32,8 +32,8 @@ std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, co
 CscMatrix eliminated_normal_matrix(const TriangleFrames& frames, const int* triangles,
                                    int num_vertices);
 
-// The lower triangle of K (as above, #V by #V) on the vertices v with unknown_of_vertex[v] >= 0,
-// which number them 0..num_unknowns-1 in increasing vertex order: num_unknowns square.
-CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& unknown_of_vertex, int num_unknowns);
+// The lower triangle of K (as above, #V by #V) on the vertices v with row_of_vertex[v] >= 0,
+// which number them 0..num_rows-1 in increasing vertex order: num_rows square.
+CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& row_of_vertex, int num_rows);
 
 }  // namespace meshik

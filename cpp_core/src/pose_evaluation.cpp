@@ -42,7 +42,7 @@ void accumulate_jacobian_products(const double* __restrict out, int k, double* _
 }
 
 // Asks the L2 cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
-// (vertices) will update, ahead of the scatter: the unknowns are in the factor's order, so
+// (vertices) will update, ahead of the scatter: the rows are in the factor's order, so
 // neighbouring triangles' rows are far apart. (A read hint into L2 measured faster than a write
 // hint into L1, which competes with the features' stream.)
 void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, const int* corners,
@@ -241,9 +241,9 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       outer_products_(static_cast<size_t>(3 * set.num_examples) *
                       row_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
-  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_unknowns()) *
+  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows()) *
                                         row_width(3 * (k + 1)));
-  coupling_.resize(3 * static_cast<size_t>(system.num_unknowns()));
+  coupling_.resize(3 * static_cast<size_t>(system.num_rows()));
   residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
   system.handle_coupling(targets, coupling_.data());
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
@@ -270,7 +270,7 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const int m = set_.num_triangles;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
   // Every row starts as -K_fh x_h in its first 3 columns and zero in the others.
-  for (int u = 0; u < system_.num_unknowns(); ++u) {
+  for (int u = 0; u < system_.num_rows(); ++u) {
     double* row = rhs_ + static_cast<size_t>(u) * stride_;
     for (int c = 0; c < 3; ++c) row[c] = -coupling_[3 * u + c];
     std::fill(row + 3, row + stride_, 0.0);
@@ -382,7 +382,7 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
   Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
   std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
-  add_outer_products(rhs_, 0, system_.num_unknowns(), nrhs, stride_, outer_products_.data());
+  add_outer_products(rhs_, 0, system_.num_rows(), nrhs, stride_, outer_products_.data());
   for (int c = 0; c < 3; ++c)
     for (int a = 0; a < k; ++a) {
       const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;

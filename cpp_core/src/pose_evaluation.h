@@ -36,9 +36,9 @@ struct PoseEvaluation {
 // The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
-  std::vector<double> coupling;  // #unknowns by 3: K_fh x_h
+  std::vector<double> coupling;  // PoseSystem::num_rows() by 3: K_fh x_h
   std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
-  // #unknowns rows of 3 (#E + 1) doubles rounded up to whole blocks of kLanes, from the first 64-byte
+  // PoseSystem::num_rows() rows of 3 (#E + 1) doubles rounded up to whole blocks of kLanes, from the first 64-byte
   // boundary: the right-hand sides, then their solution (layout: PoseEvaluator's rhs_).
   std::vector<double> rhs;
 };
@@ -58,10 +58,10 @@ class PoseEvaluator {
   // Only the Gauss-Newton system at weights (#E): fills out.weights, out.schur and out.step_rhs
   // (no pose, energy or backward solve; out.evaluation = 0, so add_second_order refuses it).
   void evaluate_system(const double* weights, PoseEvaluation& out);
-  // After evaluate_system: finishes the solve of the Jacobian's columns on the unknowns `rows`
+  // After evaluate_system: finishes the solve of the Jacobian's columns on the system rows `rows`
   // (factor order) only, along their elimination-tree paths.
   void solve_jacobian_rows(const std::vector<int>& rows);
-  // Then, for those unknowns u: #E values of Z = K'^{-1} G'^T J for coordinate c.
+  // Then, for those rows u: #E values of Z = K'^{-1} G'^T J for coordinate c.
   const double* jacobian_solution(int unknown, int c) const {
     return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * set_.num_examples;
   }

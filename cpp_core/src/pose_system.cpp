@@ -9,6 +9,20 @@
 
 namespace meshik {
 
+std::vector<int> system_rows(const VertexComponents& components) {
+  std::vector<int> row_of_vertex(components.component_of_vertex.size(), -1);
+  int rows = 0;
+  for (size_t v = 0; v < row_of_vertex.size(); ++v)
+    if (components.component_of_vertex[v] >= 0) row_of_vertex[v] = rows++;
+  return row_of_vertex;
+}
+
+CscMatrix mesh_system_lower(const ExampleSet::Impl& set) {
+  const std::vector<int> row_of_vertex = system_rows(set.components);
+  const int rows = static_cast<int>(std::count_if(row_of_vertex.begin(), row_of_vertex.end(), [](int r) { return r >= 0; }));
+  return restricted_lower(set.normal_matrix, row_of_vertex, rows);
+}
+
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
                        const ProgressCallback& progress)
     : handles_(handles) {
@@ -16,17 +30,19 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   const CscMatrix& k = set.normal_matrix;
   handle_of_vertex_.assign(n, -1);
   for (size_t h = 0; h < handles.size(); ++h) handle_of_vertex_[handles[h]] = static_cast<int>(h);
-  unknown_of_vertex_.assign(n, -1);
-  for (int v = 0; v < n; ++v)
-    if (handle_of_vertex_[v] < 0 && set.components.component_of_vertex[v] >= 0)
-      unknown_of_vertex_[v] = num_unknowns_++;
-
-  const CscMatrix lower = restricted_lower(k, unknown_of_vertex_, num_unknowns_);
-  // The mesh's elimination order restricted to the unknowns.
-  std::vector<int> order;
-  order.reserve(num_unknowns_);
-  for (int v : set.vertex_elimination_order)
-    if (unknown_of_vertex_[v] >= 0) order.push_back(unknown_of_vertex_[v]);
+  unknown_of_vertex_ = system_rows(set.components);
+  // K' and the handles' identity rows and columns, on the mesh's pattern.
+  CscMatrix lower = mesh_system_lower(set);
+  num_rows_ = lower.rows;
+  std::vector<char> handle_row(num_rows_, 0);
+  for (int v : handles)
+    if (unknown_of_vertex_[v] >= 0) handle_row[unknown_of_vertex_[v]] = 1;
+  for (int col = 0; col < num_rows_; ++col)
+    for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
+      const int row = lower.row_index[s];
+      if (handle_row[row] || handle_row[col]) lower.values[s] = row == col ? 1.0 : 0.0;
+    }
+  for (int v : handles) unknown_of_vertex_[v] = -1;
 
   // K_fh: the handles' columns restricted to the unknowns' rows.
   coupling_start_.assign(1, 0);
@@ -52,30 +68,30 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   if (progress && !progress(0.0, "factorizing"))
     throw Cancelled("cancelled before factorizing");
   try {
-    if (num_unknowns_ > 0) {
-      factor_.analyze(lower, order);
+    if (num_rows_ > 0) {
+      factor_.share_analysis(set.system_analysis);
       factor_.factorize(lower);
     }
   } catch (const NotPositiveDefinite& e) {
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +
                      e.what());
   }
-  number_unknowns_in_factor_order();
+  number_rows_in_factor_order();
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
 }
 
-void PoseSystem::number_unknowns_in_factor_order() {
-  if (num_unknowns_ == 0) return;
+void PoseSystem::number_rows_in_factor_order() {
+  if (num_rows_ == 0) return;
   const std::vector<int>& perm = factor_.permutation();
-  std::vector<int> row_of_unknown(num_unknowns_);
-  for (int row = 0; row < num_unknowns_; ++row) row_of_unknown[perm[row]] = row;
+  std::vector<int> row_of_unknown(num_rows_);
+  for (int row = 0; row < num_rows_; ++row) row_of_unknown[perm[row]] = row;
   for (int& u : unknown_of_vertex_)
     if (u >= 0) u = row_of_unknown[u];
   for (int& u : coupling_row_) u = row_of_unknown[u];
 }
 
 void PoseSystem::handle_coupling(const double* targets, double* out) const {
-  std::fill(out, out + 3 * static_cast<size_t>(num_unknowns_), 0.0);
+  std::fill(out, out + 3 * static_cast<size_t>(num_rows_), 0.0);
   for (size_t h = 0; h < handles_.size(); ++h) {
     const double* x = targets + 3 * h;
     for (int s = coupling_start_[h]; s < coupling_start_[h + 1]; ++s) {

@@ -2,17 +2,29 @@
 // vertices eliminated, handles' columns removed), the coupling K_fh that moves the handles'
 // contribution to the right-hand side, and the maps between vertices and unknowns.
 //
-// Built once per handle set; moving the handles only changes right-hand sides. The unknowns are
-// numbered in the factor's row order, so right-hand sides are solved in place, without a
-// permuted copy.
+// Built once per handle set; moving the handles only changes right-hand sides. The system keeps a
+// row for every vertex used by triangles, handles included, with identity rows and columns for
+// the handles: every handle set's matrix then has the mesh's pattern, analysed once by the
+// ExampleSet, and only its values are factored here; a handle's row of every solution is zero.
+// The rows are numbered in the factor's order, so right-hand sides are solved in place, without
+// a permuted copy.
 #pragma once
 
 #include <vector>
 
 #include "meshik/meshik.h"
 #include "meshik/sparse_cholesky.h"
+#include "mesh_topology.h"
 
 namespace meshik {
+
+// components: the mesh's. Returns #V: the system row of each vertex used by triangles (in
+// increasing vertex order), -1 for the others; the rows of every PoseSystem before factoring.
+std::vector<int> system_rows(const VertexComponents& components);
+
+// The lower triangle of K on system_rows's rows: the pattern of every handle set's system, for
+// the ExampleSet to analyse once (values: K's).
+CscMatrix mesh_system_lower(const ExampleSet::Impl& set);
 
 class PoseSystem {
  public:
@@ -21,9 +33,11 @@ class PoseSystem {
   PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
              const ProgressCallback& progress = {});
 
-  // #V: the unknown (row of K') of each vertex, or -1 for a handle or a vertex used by no triangle.
+  // #V: the row of each free vertex (an unknown of K'), or -1 for a handle or a vertex used by
+  // no triangle.
   const std::vector<int>& unknown_of_vertex() const { return unknown_of_vertex_; }
-  int num_unknowns() const { return num_unknowns_; }
+  // Rows of the factored system: the free vertices' and the handles' (whose are always zero).
+  int num_rows() const { return num_rows_; }
   const std::vector<int>& handles() const { return handles_; }
   // #V: the index in handles() of each vertex, or -1.
   const std::vector<int>& handle_of_vertex() const { return handle_of_vertex_; }
@@ -33,7 +47,7 @@ class PoseSystem {
   const std::vector<int>& handle_triangles() const { return handle_triangles_; }
   const std::vector<int>& handle_triangle_slot() const { return handle_triangle_slot_; }
 
-  // out (#unknowns by 3, row-major) = K_fh x_h: the handles' coupling to the free vertices for
+  // out (num_rows() by 3, row-major) = K_fh x_h: the handles' coupling to the free vertices for
   // handle positions targets (#H by 3, row-major).
   void handle_coupling(const double* targets, double* out) const;
 
@@ -43,31 +57,31 @@ class PoseSystem {
   const std::vector<int>& coupling_row() const { return coupling_row_; }
   const std::vector<double>& coupling_value() const { return coupling_value_; }
 
-  // The in-place halves of the solve with K' = L L^T (unknowns already in the factor's order):
-  // x is #unknowns rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
+  // The in-place halves of the solve with the factored system (rows in the factor's order):
+  // x is num_rows() rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
   // whole vectors) of every row are overwritten with L^{-1} x (forward) or L^{-T} x (backward).
   static int padded_width(int nrhs) { return SparseCholesky::padded_width(nrhs); }
   void forward_solve(double* x, int stride, int columns) const {
-    if (num_unknowns_ > 0) factor_.forward_solve_in_order(x, stride, columns);
+    if (num_rows_ > 0) factor_.forward_solve_in_order(x, stride, columns);
   }
   void backward_solve(double* x, int stride, int columns) const {
-    if (num_unknowns_ > 0) factor_.backward_solve_in_order(x, stride, columns);
+    if (num_rows_ > 0) factor_.backward_solve_in_order(x, stride, columns);
   }
-  // backward_solve exact on the unknowns `rows` only (SparseCholesky::backward_solve_rows_in_order).
+  // backward_solve exact on the rows `rows` only (SparseCholesky::backward_solve_rows_in_order).
   void backward_solve_rows(double* x, int stride, int columns, const std::vector<int>& rows) const {
-    if (num_unknowns_ > 0) factor_.backward_solve_rows_in_order(x, stride, columns, rows);
+    if (num_rows_ > 0) factor_.backward_solve_rows_in_order(x, stride, columns, rows);
   }
 
   long long factor_nonzeros() const { return factor_.factor_nonzeros(); }
 
  private:
   // Renumbers unknown_of_vertex_ and coupling_row_ in the factor's row order (after factoring).
-  void number_unknowns_in_factor_order();
+  void number_rows_in_factor_order();
 
   std::vector<int> handles_;
   std::vector<int> handle_of_vertex_;
   std::vector<int> unknown_of_vertex_;
-  int num_unknowns_ = 0;
+  int num_rows_ = 0;
   // K_fh by handle: entries coupling_row_[s], coupling_value_[s] for s in
   // [coupling_start_[h], coupling_start_[h+1]).
   std::vector<int> coupling_start_;

@@ -52,15 +52,10 @@ class SparseCholesky {
   // column or entry when `a` is malformed (not square, indices unsorted / repeated / out of
   // range, a diagonal entry missing, sizes inconsistent).
   void analyze(const CscMatrix& a);
-  // As analyze(a), eliminating in `order` (a permutation of a's n columns, else
-  // std::invalid_argument naming the entry) instead of running the minimum-degree ordering:
-  // for a family of matrices sharing most of one graph (a mesh's system with different handle
-  // vertices removed), fill_reducing_order of the whole graph restricted to each matrix's
-  // columns is as good as its own and computed once.
-  void analyze(const CscMatrix& a, const std::vector<int>& order);
-  // The elimination order analyze(a) uses (n entries, the column eliminated first first);
-  // validates `a` as analyze does.
-  static std::vector<int> fill_reducing_order(const CscMatrix& a);
+  // Takes `other`'s analysis (shared, not copied; other must have one, else std::logic_error)
+  // for matrices of its pattern: many factorizations of one pattern (a mesh's system for
+  // several handle sets) analyse it once. Drops any factorization this one held.
+  void share_analysis(const SparseCholesky& other);
   // Numeric factorization of `a`, which must have the pattern given to analyze() (else
   // std::invalid_argument). Throws NotPositiveDefinite naming the (original) column whose pivot
   // is not positive; solve() is then unavailable until a factorization succeeds.

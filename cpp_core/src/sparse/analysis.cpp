@@ -10,13 +10,13 @@ namespace meshik::sparse {
 
 namespace {
 
-// Supernodal analysis of the graph `reduced` (the matrix without its simplicial nodes) eliminated
-// in `order` (a permutation of its nodes), postordered along its elimination tree so that
-// supernodes are runs of consecutive columns. Writes the final order (in `reduced`'s numbering)
-// to `perm` and returns the structure numbered from `column_offset`.
-SymbolicFactor supernodal_analysis(const Pattern& reduced, const std::vector<int>& order, int column_offset,
-                                   std::vector<int>& perm) {
+// Supernodal analysis of the graph `reduced` (the matrix without its simplicial nodes):
+// minimum-degree order, then a postorder of its elimination tree so that supernodes are runs
+// of consecutive columns. Writes the order (in `reduced`'s numbering) to `perm` and returns
+// the structure numbered from `column_offset`.
+SymbolicFactor supernodal_analysis(const Pattern& reduced, int column_offset, std::vector<int>& perm) {
   const int n = reduced.n;
+  const std::vector<int> order = minimum_degree_ordering(reduced);
   const Pattern ordered = permuted_graph(reduced, order, invert_permutation(order));
   const std::vector<int> order_parent = elimination_tree(ordered);
   const std::vector<int> post = tree_postorder(order_parent);
@@ -32,69 +32,36 @@ SymbolicFactor supernodal_analysis(const Pattern& reduced, const std::vector<int
                          find_supernodes(parent, counts), column_offset);
 }
 
-// A matrix's graph split into its simplicial nodes (eliminated first, without fill) and the
-// rest, whose induced subgraph the supernodal analysis orders.
-struct SplitGraph {
-  std::vector<int> simplicial;  // increasing node indices
-  std::vector<int> rest;        // the other nodes, increasing
-  std::vector<int> local;       // #nodes: index in `rest`, or -1 for a simplicial node
-  Pattern reduced;              // the subgraph induced by `rest`, in its numbering
-};
+}  // namespace
 
-SplitGraph split_simplicial(const CscMatrix& a) {
+Analysis analyze_pattern(const CscMatrix& a) {
   // Degree 4 covers a 4th-vertex unknown (3 neighbours) with room for one more; larger
   // cliques are rare in meshes and cost more to test.
   constexpr int kMaxSimplicialDegree = 4;
-  SplitGraph split;
+  Analysis analysis;
   const Pattern graph = adjacency_graph(a);
-  split.simplicial = simplicial_nodes(graph, kMaxSimplicialDegree);
+  const std::vector<int> simplicial = simplicial_nodes(graph, kMaxSimplicialDegree);
+  const int prefix_size = static_cast<int>(simplicial.size());
+  // The rest: the subgraph induced by the other nodes.
   std::vector<char> in_prefix(graph.n, 0);
-  for (int v : split.simplicial) in_prefix[v] = 1;
-  split.local.assign(graph.n, -1);
+  for (int v : simplicial) in_prefix[v] = 1;
+  std::vector<int> local(graph.n, -1), rest;
   for (int v = 0; v < graph.n; ++v)
     if (!in_prefix[v]) {
-      split.local[v] = static_cast<int>(split.rest.size());
-      split.rest.push_back(v);
+      local[v] = static_cast<int>(rest.size());
+      rest.push_back(v);
     }
-  split.reduced = split.simplicial.empty() ? graph : induced_subgraph(graph, split.rest, split.local);
-  return split;
-}
-
-// The analysis of `a` (split as `split`) with the rest eliminated in rest_order (local indices).
-Analysis analysis_in_order(const CscMatrix& a, const SplitGraph& split, const std::vector<int>& rest_order) {
-  Analysis analysis;
-  const int prefix_size = static_cast<int>(split.simplicial.size());
   std::vector<int> rest_perm;
-  analysis.symbolic = supernodal_analysis(split.reduced, rest_order, prefix_size, rest_perm);
-  analysis.perm = split.simplicial;
-  for (int t : rest_perm) analysis.perm.push_back(split.rest[t]);
+  if (prefix_size == 0)
+    analysis.symbolic = supernodal_analysis(graph, 0, rest_perm);
+  else
+    analysis.symbolic = supernodal_analysis(induced_subgraph(graph, rest, local), prefix_size, rest_perm);
+  analysis.perm = simplicial;
+  for (int t : rest_perm) analysis.perm.push_back(rest[t]);
   analysis.lower = permute_lower(a, invert_permutation(analysis.perm));
   analysis.prefix = simplicial_prefix(analysis.lower.pattern, prefix_size);
   analysis.factor_nonzeros = analysis.prefix.nonzeros() + analysis.symbolic.structural_nonzeros;
   return analysis;
-}
-
-}  // namespace
-
-std::vector<int> fill_reducing_order(const CscMatrix& a) {
-  const SplitGraph split = split_simplicial(a);
-  std::vector<int> order = split.simplicial;
-  for (int t : minimum_degree_ordering(split.reduced)) order.push_back(split.rest[t]);
-  return order;
-}
-
-Analysis analyze_pattern(const CscMatrix& a) {
-  const SplitGraph split = split_simplicial(a);
-  return analysis_in_order(a, split, minimum_degree_ordering(split.reduced));
-}
-
-Analysis analyze_pattern(const CscMatrix& a, const std::vector<int>& order) {
-  const SplitGraph split = split_simplicial(a);
-  std::vector<int> rest_order;
-  rest_order.reserve(split.rest.size());
-  for (int v : order)
-    if (split.local[v] >= 0) rest_order.push_back(split.local[v]);
-  return analysis_in_order(a, split, rest_order);
 }
 
 }  // namespace meshik::sparse

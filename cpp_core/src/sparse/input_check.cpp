@@ -49,19 +49,4 @@ void check_lower_input(const CscMatrix& a) {
   for (int j = 0; j < a.cols; ++j) check_column(a, j);
 }
 
-void check_order(const std::vector<int>& order, int n) {
-  if (order.size() != static_cast<size_t>(n))
-    fail("elimination order has " + std::to_string(order.size()) + " entries, the matrix has " +
-         std::to_string(n) + " columns");
-  std::vector<char> seen(n, 0);
-  for (size_t k = 0; k < order.size(); ++k) {
-    const int v = order[k];
-    if (v < 0 || v >= n)
-      fail("elimination order entry " + std::to_string(k) + " is " + std::to_string(v) +
-           ", out of range [0, " + std::to_string(n) + ")");
-    if (seen[v]) fail("elimination order entry " + std::to_string(k) + " repeats column " + std::to_string(v));
-    seen[v] = 1;
-  }
-}
-
 }  // namespace meshik::sparse

@@ -1,8 +1,6 @@
 // Validation of a CscMatrix handed to SparseCholesky.
 #pragma once
 
-#include <vector>
-
 #include "meshik/sparse_cholesky.h"
 
 namespace meshik::sparse {
@@ -11,9 +9,5 @@ namespace meshik::sparse {
 // compressed-column matrix with sorted, unique, in-range row indices, a diagonal entry in every
 // column's lower part, and values.size() == row_index.size().
 void check_lower_input(const CscMatrix& a);
-
-// Throws std::invalid_argument naming the offending entry unless `order` is a permutation of
-// 0..n-1.
-void check_order(const std::vector<int>& order, int n);
 
 }  // namespace meshik::sparse

@@ -2,6 +2,7 @@
 #include "meshik/sparse_cholesky.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -15,20 +16,32 @@ namespace meshik {
 
 using namespace sparse;
 
-struct SparseCholesky::Impl {
-  // The analysed pattern, to check that factorize() gets the same one.
-  std::vector<int> input_col_start, input_row_index;
+namespace {
+
+// An analysed pattern (kept to check that factorize() gets the same one) and its analysis,
+// shared by every SparseCholesky analysed like the one that made it.
+struct AnalyzedPattern {
+  std::vector<int> col_start, row_index;
   Analysis analysis;
+};
+
+}  // namespace
+
+struct SparseCholesky::Impl {
+  std::shared_ptr<const AnalyzedPattern> pattern;
   FactorValues factor;
   bool factorized = false;
 
-  // Starts over with the analysis of a's pattern (no factorization yet).
-  void reset(const CscMatrix& a, Analysis fresh) {
-    input_col_start = a.col_start;
-    input_row_index = a.row_index;
-    analysis = std::move(fresh);
+  // Starts over with an analysed pattern (no factorization yet).
+  void reset(std::shared_ptr<const AnalyzedPattern> analyzed) {
+    pattern = std::move(analyzed);
     factor = FactorValues();
     factorized = false;
+  }
+  // The analysis (an empty one before analyze()).
+  const Analysis& analysis() const {
+    static const Analysis kNone;
+    return pattern ? pattern->analysis : kNone;
   }
 };
 
@@ -53,30 +66,29 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
 void SparseCholesky::analyze(const CscMatrix& a) {
   check_lower_input(a);
-  impl_->reset(a, analyze_pattern(a));
+  auto analyzed = std::make_shared<AnalyzedPattern>();
+  analyzed->analysis = analyze_pattern(a);
+  analyzed->col_start = a.col_start;
+  analyzed->row_index = a.row_index;
+  impl_->reset(std::move(analyzed));
 }
 
-void SparseCholesky::analyze(const CscMatrix& a, const std::vector<int>& order) {
-  check_lower_input(a);
-  check_order(order, a.cols);
-  impl_->reset(a, analyze_pattern(a, order));
-}
-
-std::vector<int> SparseCholesky::fill_reducing_order(const CscMatrix& a) {
-  check_lower_input(a);
-  return sparse::fill_reducing_order(a);
+void SparseCholesky::share_analysis(const SparseCholesky& other) {
+  if (!other.impl_->pattern) throw std::logic_error("SparseCholesky::share_analysis: the other has no analysis");
+  impl_->reset(other.impl_->pattern);
 }
 
 void SparseCholesky::factorize(const CscMatrix& a) {
   Impl& s = *impl_;
-  if (a.rows != a.cols || a.col_start != s.input_col_start || a.row_index != s.input_row_index)
+  if (!s.pattern) throw std::logic_error("SparseCholesky::factorize: no analyze() or share_analysis() first");
+  if (a.rows != a.cols || a.col_start != s.pattern->col_start || a.row_index != s.pattern->row_index)
     throw std::invalid_argument(
         "SparseCholesky::factorize: the matrix pattern differs from the one given to analyze()");
   if (a.values.size() != a.row_index.size())
     throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
                                 " entries, expected " + std::to_string(a.row_index.size()));
   s.factorized = false;
-  factorize_numeric(s.analysis, a.values, s.factor);
+  factorize_numeric(s.analysis(), a.values, s.factor);
   s.factorized = true;
 }
 
@@ -91,7 +103,7 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   if (nrhs < 0) throw std::invalid_argument("SparseCholesky::solve: nrhs must be >= 0");
   if (nrhs == 0) return;
   const int n = size();
-  const std::vector<int>& perm = s.analysis.perm;
+  const std::vector<int>& perm = s.analysis().perm;
   const size_t width = static_cast<size_t>(nrhs);
   // Permuted copy of b with rows padded to whole vectors, starting on a cache line (rows of
   // 16 doubles then span two lines, not three: measured 12% faster). Reused per thread: a
@@ -108,8 +120,8 @@ void SparseCholesky::solve(double* b, int nrhs) const {
     for (int c = 0; c < nrhs; ++c) to[c] = from[c];
     for (int c = nrhs; c < stride; ++c) to[c] = 0.0;
   }
-  forward_solve(s.analysis, s.factor, x, stride, stride);
-  backward_solve(s.analysis, s.factor, x, stride, stride);
+  forward_solve(s.analysis(), s.factor, x, stride, stride);
+  backward_solve(s.analysis(), s.factor, x, stride, stride);
   for (int k = 0; k < n; ++k) {
     const double* from = x + static_cast<size_t>(k) * stride;
     double* to = b + perm[k] * width;
@@ -117,18 +129,18 @@ void SparseCholesky::solve(double* b, int nrhs) const {
   }
 }
 
-const std::vector<int>& SparseCholesky::permutation() const { return impl_->analysis.perm; }
+const std::vector<int>& SparseCholesky::permutation() const { return impl_->analysis().perm; }
 
 int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
 
 void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  forward_solve(impl_->analysis, impl_->factor, x, stride, columns);
+  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
 }
 
 void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  backward_solve(impl_->analysis, impl_->factor, x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
 }
 
 void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int columns,
@@ -138,11 +150,11 @@ void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int col
     if (r < 0 || r >= size())
       throw std::invalid_argument("SparseCholesky: backward solve row " + std::to_string(r) + " out of range [0, " +
                                   std::to_string(size()) + ")");
-  backward_solve(impl_->analysis, impl_->factor, reach_to_roots(impl_->analysis, rows), x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, reach_to_roots(impl_->analysis(), rows), x, stride, columns);
 }
 
-int SparseCholesky::size() const { return static_cast<int>(impl_->analysis.perm.size()); }
+int SparseCholesky::size() const { return static_cast<int>(impl_->analysis().perm.size()); }
 
-long long SparseCholesky::factor_nonzeros() const { return impl_->analysis.factor_nonzeros; }
+long long SparseCholesky::factor_nonzeros() const { return impl_->analysis().factor_nonzeros; }
 
 }  // namespace meshik
