@@ -100,8 +100,12 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress);
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
-  const CscMatrix system_lower = mesh_system_lower(impl);
-  if (system_lower.rows > 0) impl.system_analysis.analyze(system_lower);
+  impl.system_row_of_vertex.assign(rest.num_vertices, -1);
+  int system_rows = 0;
+  for (int v = 0; v < rest.num_vertices; ++v)
+    if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
+  impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
+  if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
   compute_centroids(impl, example_pointers);
 }
 

@@ -32,9 +32,11 @@ struct ExampleSet::Impl {
   TriangleFrames frames;
   ExampleFeatures features;
   CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
-  // The analysis (ordering and symbolic factorization) of the pattern every handle set's system
-  // has (mesh_system_lower, pose_system.h): done once here, shared by every PoseSystem.
-  SparseCholesky system_analysis;
+  // Every handle set's pose system (pose_system.h) has a row for each vertex used by triangles
+  // and the pattern of K there; built and analysed (ordering, symbolic factorization) once here:
+  std::vector<int> system_row_of_vertex;  // #V: the vertex's row (increasing vertex order), or -1
+  CscMatrix system_lower;                 // the lower triangle of K on those rows
+  SparseCholesky system_analysis;         // system_lower's analysis, shared by every PoseSystem
   // Per component c: the rest centroid (3) and each example's centroid minus it (#E by 3), so
   // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
   std::vector<double> rest_centroid;   // #components by 3

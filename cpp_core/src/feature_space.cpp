@@ -19,18 +19,27 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
     for (int c = 0; c < 2; ++c) block[(first_row + 2 * r + c) * kLanes + lane] = m(r, c);
 }
 
+// Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
+// rows of 2 kLanes floats, the first batch's lanes first: one pair of kCurvatureBatches.
+MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
+  for (int row = 0; row < rows; ++row) {
+    for (int l = 0; l < kLanes; ++l) out[row * 2 * kLanes + l] = static_cast<float>(first[row * kLanes + l]);
+    for (int l = 0; l < kLanes; ++l)
+      out[row * 2 * kLanes + kLanes + l] = second != nullptr ? static_cast<float>(second[row * kLanes + l]) : 0.0f;
+  }
+}
+static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
+
 // Per-batch blocks of `rows` rows of kLanes doubles (num_batches of them) as single-precision
-// blocks of pairs of batches: rows of kCurvatureBatches kLanes, zero past the last batch.
+// blocks of pairs of batches (narrow_pair): rows of kCurvatureBatches kLanes, zero past the last
+// batch.
 std::vector<float> paired_single(const std::vector<double>& blocks, int num_batches, int rows) {
-  constexpr int kPair = kCurvatureBatches * kLanes;
+  const size_t batch_size = static_cast<size_t>(rows) * kLanes;
   const int pairs = (num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
-  std::vector<float> paired(static_cast<size_t>(pairs) * rows * kPair, 0.0f);
-  for (int batch = 0; batch < num_batches; ++batch) {
-    const double* from = blocks.data() + static_cast<size_t>(batch) * rows * kLanes;
-    float* to = paired.data() + static_cast<size_t>(batch / kCurvatureBatches) * rows * kPair +
-                (batch % kCurvatureBatches) * kLanes;
-    for (int row = 0; row < rows; ++row)
-      for (int l = 0; l < kLanes; ++l) to[row * kPair + l] = static_cast<float>(from[row * kLanes + l]);
+  std::vector<float> paired(static_cast<size_t>(pairs) * kCurvatureBatches * batch_size);
+  for (int batch = 0; batch < num_batches; batch += kCurvatureBatches) {
+    const double* first = blocks.data() + batch * batch_size;
+    narrow_pair(first, batch + 1 < num_batches ? first + batch_size : nullptr, rows, paired.data() + batch * batch_size);
   }
   return paired;
 }
@@ -294,16 +303,6 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
-// Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
-// rows of 2 kLanes floats, the first batch's lanes first.
-MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
-  for (int row = 0; row < rows; ++row) {
-    for (int l = 0; l < L; ++l) out[row * 2 * L + l] = static_cast<float>(first[row * L + l]);
-    for (int l = 0; l < L; ++l)
-      out[row * 2 * L + L + l] = second != nullptr ? static_cast<float>(second[row * L + l]) : 0.0f;
-  }
-}
-
 }  // namespace
 
 MESHIK_SIMD_CLONES
@@ -334,7 +333,6 @@ MESHIK_SIMD_CLONES
 void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch, const double* residual,
                             float* scratch, double* curvature_lanes) {
   constexpr int N = kCurvatureBatches * L;
-  static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
   const int k = features.num_examples;
   const int pair = batch / kCurvatureBatches;
   const int pairs = (features.num_batches + kCurvatureBatches - 1) / kCurvatureBatches;

@@ -5,23 +5,8 @@
 #include <string>
 
 #include "example_set_impl.h"
-#include "gradient_operator.h"
 
 namespace meshik {
-
-std::vector<int> system_rows(const VertexComponents& components) {
-  std::vector<int> row_of_vertex(components.component_of_vertex.size(), -1);
-  int rows = 0;
-  for (size_t v = 0; v < row_of_vertex.size(); ++v)
-    if (components.component_of_vertex[v] >= 0) row_of_vertex[v] = rows++;
-  return row_of_vertex;
-}
-
-CscMatrix mesh_system_lower(const ExampleSet::Impl& set) {
-  const std::vector<int> row_of_vertex = system_rows(set.components);
-  const int rows = static_cast<int>(std::count_if(row_of_vertex.begin(), row_of_vertex.end(), [](int r) { return r >= 0; }));
-  return restricted_lower(set.normal_matrix, row_of_vertex, rows);
-}
 
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
                        const ProgressCallback& progress)
@@ -30,9 +15,9 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   const CscMatrix& k = set.normal_matrix;
   handle_of_vertex_.assign(n, -1);
   for (size_t h = 0; h < handles.size(); ++h) handle_of_vertex_[handles[h]] = static_cast<int>(h);
-  unknown_of_vertex_ = system_rows(set.components);
+  unknown_of_vertex_ = set.system_row_of_vertex;
   // K' and the handles' identity rows and columns, on the mesh's pattern.
-  CscMatrix lower = mesh_system_lower(set);
+  CscMatrix lower = set.system_lower;
   num_rows_ = lower.rows;
   std::vector<char> handle_row(num_rows_, 0);
   for (int v : handles)

@@ -1,5 +1,5 @@
 // The factored normal matrix of one handle set: K' = G'^T G' on the free vertices (fourth
-// vertices eliminated, handles' columns removed), the coupling K_fh that moves the handles'
+// vertices eliminated, handles' columns taken out), the coupling K_fh that moves the handles'
 // contribution to the right-hand side, and the maps between vertices and unknowns.
 //
 // Built once per handle set; moving the handles only changes right-hand sides. The system keeps a
@@ -14,17 +14,8 @@
 
 #include "meshik/meshik.h"
 #include "meshik/sparse_cholesky.h"
-#include "mesh_topology.h"
 
 namespace meshik {
-
-// components: the mesh's. Returns #V: the system row of each vertex used by triangles (in
-// increasing vertex order), -1 for the others; the rows of every PoseSystem before factoring.
-std::vector<int> system_rows(const VertexComponents& components);
-
-// The lower triangle of K on system_rows's rows: the pattern of every handle set's system, for
-// the ExampleSet to analyse once (values: K's).
-CscMatrix mesh_system_lower(const ExampleSet::Impl& set);
 
 class PoseSystem {
  public:
