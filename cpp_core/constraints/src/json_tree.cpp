@@ -56,15 +56,20 @@ class TreeBuilder : public nlohmann::json_sax<Json> {
   bool end_object() override { return close(); }
   bool start_array(std::size_t) override { return open(JsonValue::Kind::List); }
   bool end_array() override { return close(); }
-  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& error) override {
+  bool parse_error(std::size_t position, const std::string& last_token,
+                   const nlohmann::detail::exception& error) override {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 1, column 2:
-    // syntax error while ..."; keep the reason, and count the column in characters.
+    // syntax error while ...; last read: '<token>'; expected ..."; keep the reason without the
+    // token (the line and column point at it), and count the column in characters.
     std::string reason = error.what();
     const std::size_t colon = reason.find(": ", reason.find("parse error at line"));
     if (reason.rfind("[json.exception.", 0) == 0) {
       const std::size_t start = colon != std::string::npos ? colon + 2 : reason.find(']') + 2;
       reason = reason.substr(std::min(start, reason.size()));
     }
+    const std::string token = "; last read: '" + last_token + "'";
+    const std::size_t at = reason.find(token);
+    if (at != std::string::npos) reason.erase(at, token.size());
     const auto [line, column] = line_and_column(text_, position > 0 ? position - 1 : 0);
     failure_ = "not valid JSON: line " + std::to_string(line) + " column " + std::to_string(column) + ": " + reason;
     return false;
