@@ -192,7 +192,9 @@ def write_set(out: pathlib.Path, name: str, data: dict, feature_space: str = "no
     for i, example in enumerate(data["examples"], start=1):
         names.append(f"example_{i}.obj")
         write_obj(folder / names[-1], example, data["faces"], f"MeshIK sample '{name}': example {i}")
-    constraints = {"format": "meshik-constraints", "version": 1, "rest": "rest.obj", "examples": names,
+    # "$schema" lets editors check and complete the file (the path is relative to the set's folder).
+    constraints = {"$schema": "../../pipeline/meshik/schema/meshik-constraints-1.schema.json",
+                   "format": "meshik-constraints", "version": 1, "rest": "rest.obj", "examples": names,
                    "feature_space": feature_space, "handles": data["handles"], "frames": data["frames"]}
     (folder / "animation.json").write_text(json.dumps(constraints, indent=1) + "\n")
     print(f"{name}: {len(data['rest'])} vertices, {len(data['faces'])} triangles, "
