@@ -1,4 +1,4 @@
-"""The `meshik` command: pose, batch, blend, info. Exit status 0 on success, 1 when any job or
+"""The `meshik` command: pose, batch, blend, info, validate. Exit status 0 on success, 1 when any job or
 file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
 import argparse
 import json
@@ -30,7 +30,7 @@ def main(argv: Optional[List[str]] = None) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
-    """The argument parser with its four sub-commands."""
+    """The argument parser with its sub-commands."""
     parser = argparse.ArgumentParser(
         prog="meshik", description="Mesh-based inverse kinematics: pose a mesh from handle targets within the space "
                                    "of its example poses, and write the animation as compressed assets.")
@@ -71,6 +71,12 @@ def _parser() -> argparse.ArgumentParser:
     info.add_argument("files", metavar="FILE", nargs="+", help="meshes, .drc, .glb or constraint (.json) files")
     info.add_argument("--json", action="store_true", help="print the summaries as JSON")
     info.set_defaults(run=_run_info)
+
+    validate = commands.add_parser("validate", help="check constraint files and print every problem",
+                                   description="Check constraint files (format, mesh files, handles on the rest mesh) "
+                                               "and print every problem, one per line; exit status 1 when any file has one.")
+    validate.add_argument("files", metavar="FILE", nargs="+", help="constraint (.json) files")
+    validate.set_defaults(run=_run_validate)
     return parser
 
 
@@ -141,6 +147,16 @@ def _run_info(args) -> int:
     for error in errors:
         print(f"meshik: error: {error}", file=sys.stderr)
     return 1 if errors else 0
+
+
+def _run_validate(args) -> int:
+    """`meshik validate`: "<file>: OK" or each problem of each file; 1 when any file has a problem."""
+    from meshik.validation import validate_files
+
+    results = validate_files(args.files)
+    for path, problems in zip(args.files, results):
+        print(f"{path}: OK" if not problems else "\n".join(problems))
+    return 1 if any(results) else 0
 
 
 def _positive_int(text: str) -> int:

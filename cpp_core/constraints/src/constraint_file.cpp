@@ -53,34 +53,47 @@ std::string read_bytes(const std::string& path) {
   return bytes;
 }
 
-// Every problem of constraint-file text as violations; the document read (complete only when
-// there is none). A syntax error (or a text that is not UTF-8) is the only problem reported.
-ConstraintDocument check_text(std::string_view text, const std::string& source, std::vector<std::string>& messages) {
+// The result of checking constraint-file text: the document read (complete only when there is no
+// problem), the problems as full messages, and whether the file's mesh names could be read.
+struct CheckedText {
+  ConstraintDocument document;
+  std::vector<std::string> messages;
+  bool mesh_names_read = false;  // "rest" and "examples" were read without a problem
+};
+
+// Checks constraint-file text. A syntax error (or a text that is not UTF-8) is the only problem
+// reported; otherwise every rule the document breaks is.
+CheckedText check_text(std::string_view text, const std::string& source) {
+  CheckedText checked;
   const std::size_t bad_byte = first_non_utf8_byte(text);
   if (bad_byte != std::string_view::npos) {
-    messages.push_back(source + ": not UTF-8 text (byte " + std::to_string(bad_byte) + ")");
-    return {};
+    checked.messages.push_back(source + ": not UTF-8 text (byte " + std::to_string(bad_byte) + ")");
+    return checked;
   }
   JsonValue top;
   try {
     top = parse_json(text);
   } catch (const JsonSyntaxError& error) {
-    messages.push_back(source + ": " + error.what());
-    return {};
+    checked.messages.push_back(source + ": " + error.what());
+    return checked;
   }
   ViolationList problems;
-  ConstraintDocument document = read_document(top, source, problems);
-  for (const Violation& violation : problems.list()) messages.push_back(violation_message(source, violation));
-  return document;
+  checked.document = read_document(top, source, problems);
+  checked.mesh_names_read = top.find("rest") && top.find("examples");
+  for (const Violation& violation : problems.list()) {
+    checked.messages.push_back(violation_message(source, violation));
+    const std::string& path = violation.path;
+    if (path == "" || path == "rest" || path.rfind("examples", 0) == 0) checked.mesh_names_read = false;
+  }
+  return checked;
 }
 
 }  // namespace
 
 ConstraintDocument parse_constraints(std::string_view text, const std::string& source) {
-  std::vector<std::string> messages;
-  ConstraintDocument document = check_text(text, source, messages);
-  if (!messages.empty()) throw ConstraintError(messages.front());
-  return document;
+  CheckedText checked = check_text(text, source);
+  if (!checked.messages.empty()) throw ConstraintError(checked.messages.front());
+  return std::move(checked.document);
 }
 
 ConstraintDocument read_constraint_file(const std::string& path) {
@@ -88,14 +101,14 @@ ConstraintDocument read_constraint_file(const std::string& path) {
 }
 
 std::vector<std::string> validate_constraint_file(const std::string& path, bool check_mesh_files) {
-  std::vector<std::string> messages;
+  CheckedText checked;
   try {
-    const ConstraintDocument document = check_text(read_bytes(path), path, messages);
-    if (messages.empty() && check_mesh_files) locate_mesh_files(document);
-  } catch (const ConstraintError& error) {
-    messages.push_back(error.what());
+    checked = check_text(read_bytes(path), path);
+    if (check_mesh_files && checked.mesh_names_read) locate_mesh_files(checked.document);
+  } catch (const ConstraintError& error) {  // an unreadable file, or the first missing mesh
+    checked.messages.push_back(error.what());
   }
-  return messages;
+  return checked.messages;
 }
 
 std::int64_t find_frame(const ConstraintDocument& document, const std::string& frame) {
