@@ -17,6 +17,7 @@ constexpr std::int64_t kFormatVersion = 1;
 struct KnownGroups {
   std::vector<HandleGroup> good;
   std::set<std::string> bad;
+  std::vector<std::string> names;  // every group's name, good or bad, in the file's order
   bool member_ok = true;  // "handles" itself was an object
 
   const HandleGroup* find(const std::string& name) const {
@@ -132,6 +133,7 @@ KnownGroups read_handles(const JsonValue& value, ViolationList& problems) {
   std::map<std::int64_t, std::string> owner;
   for (const auto& [name, spec] : value.members) {
     if (name.rfind('_', 0) == 0) continue;  // the user's own annotation
+    groups.names.push_back(name);
     auto group = read_group(name, spec, child_path("handles", name), owner, problems);
     if (group)
       groups.good.push_back(std::move(*group));
@@ -259,7 +261,7 @@ std::optional<GroupTarget> read_target(const JsonValue& spec, const HandleGroup&
 // "no handle group named ..." with the list of the groups.
 std::string unknown_group(const std::string& name, const KnownGroups& groups) {
   std::string known;
-  for (const HandleGroup& group : groups.good) known += (known.empty() ? "\"" : ", \"") + group.name + "\"";
+  for (const std::string& group : groups.names) known += (known.empty() ? "\"" : ", \"") + group + "\"";
   return "no handle group named \"" + name + "\" (groups: " + known + ")";
 }
 
