@@ -18,7 +18,7 @@ struct KnownGroups {
   std::vector<HandleGroup> good;
   std::set<std::string> bad;
   std::vector<std::string> names;  // every group's name, good or bad, in the file's order
-  bool member_ok = true;  // "handles" itself was an object
+  bool member_ok = true;  // "handles" was an object with at least one group
 
   const HandleGroup* find(const std::string& name) const {
     for (const HandleGroup& group : good)
@@ -140,7 +140,10 @@ KnownGroups read_handles(const JsonValue& value, ViolationList& problems) {
     else
       groups.bad.insert(name);
   }
-  if (groups.good.empty() && groups.bad.empty()) problems.add("handles", "expected at least one handle group");
+  if (groups.names.empty()) {
+    problems.add("handles", "expected at least one handle group");
+    groups.member_ok = false;  // frames naming groups say nothing more
+  }
   return groups;
 }
 
