@@ -295,3 +295,37 @@ def test_fuzz_raw_bytes(tmp_path, raw):
         constraints.load(path)
     except ConstraintError:
         pass
+
+
+# ---- the library's own behaviour through the Python API ----------------------------------------
+
+def test_duplicate_keys_are_refused_with_their_path(tube_set):
+    text = json.dumps(tube_constraints(tube_set, frames=1), indent=1).replace('"top": [', '"bottom": [', 1)
+    with pytest.raises(ConstraintError, match=r"shot.json: handles.bottom: duplicate key$"):
+        constraints.loads(text, tube_set["rest"].parent / "shot.json")
+
+
+def test_validate_lists_every_problem(tube_set, document):
+    document["fps"] = -1
+    document["handles"]["top"] = [0, 31]
+    document["frames"][0]["name"] = "a b"
+    path = write_constraints(tube_set["rest"].parent / "many.json", document)
+    assert [problem.split(": ", 2)[1] for problem in constraints.validate(path)] == [
+        "handles.top[0]", "frames[0].name", "fps"]
+    assert all(problem.startswith(f"{path}: ") for problem in constraints.validate(path))
+    assert constraints.validate(write_constraints(tube_set["rest"].parent / "good.json", tube_constraints(tube_set, frames=1))) == []
+
+
+def test_written_file_reads_back_to_the_same_targets(tube_set):
+    rest = tube_set["vertices"]
+    groups = {"bottom": (np.array(tube_set["bottom"]), rest[tube_set["bottom"]]),
+              "top": (np.array(tube_set["top"]), bend(rest, 33.0)[tube_set["top"]])}
+    path = tube_set["rest"].parent / "saved.json"
+    constraints.write(path, "rest.obj", ["example_1.obj", "example_2.obj"], groups, frame_name="pose")
+    resolved = constraints.resolve(constraints.load(path), rest)
+    assert resolved.frame_names == ("pose",)
+    np.testing.assert_array_equal(resolved.handles, np.concatenate([tube_set["bottom"], tube_set["top"]]))
+    np.testing.assert_array_equal(resolved.targets[0], np.concatenate([groups["bottom"][1], groups["top"][1]]))  # exact
+    with pytest.raises(ConstraintError, match='saved.json: handle group "top": the target of vertex 30 is not finite'):
+        constraints.write(path, "rest.obj", ["example_1.obj"], {"top": ([30], [[0.0, np.nan, 0.0]])})
+    assert constraints.resolve(constraints.load(path), rest).frame_names == ("pose",)  # the old file is kept
