@@ -143,7 +143,9 @@ def resolve(constraints: ConstraintSet, rest_vertices: np.ndarray) -> ResolvedCo
     Checks indices against #V, finds region vertices, checks that position lists match region
     sizes, that no vertex is in two groups, and applies rigid motions to the groups' rest positions.
     """
-    rest = np.ascontiguousarray(rest_vertices, dtype=np.float64).reshape(-1, 3)
+    rest = np.ascontiguousarray(rest_vertices, dtype=np.float64)
+    if rest.ndim != 2 or rest.shape[1] != 3:
+        raise ValueError(f"rest_vertices must have shape (n, 3), got {rest.shape}")
     names, groups, handles, targets, frame_names = _constraints.resolve(constraints.document, rest)
     return ResolvedConstraints(groups=dict(zip(names, groups)), handles=handles, targets=targets,
                                frame_names=tuple(frame_names))
