@@ -91,6 +91,41 @@ TEST(ConstraintLibrary, ValidateReportsEveryProblem) {
   fs::remove_all(dir);
 }
 
+TEST(ConstraintLibrary, ValidateReportsEveryMissingMesh) {
+  const fs::path dir = scratch_dir("meshes");
+  std::ofstream(dir / "rest.obj") << "v 0 0 0\n";
+  std::ofstream(dir / "shot.json") << kHead << R"("handles": {"a": [0]}, "frames": [{}]})";
+  std::ofstream(dir / "three.json") << R"({"format": "meshik-constraints", "version": 1, "rest": "none.obj",
+      "examples": ["rest.obj", "b.obj", "c.obj"], "handles": {"a": [0]}, "frames": [{}]})";
+  const std::string p = (dir / "three.json").string() + ": ";
+  EXPECT_EQ(mc::validate_constraint_file((dir / "three.json").string(), true),
+            (std::vector<std::string>{p + "rest: mesh file not found: " + (dir / "none.obj").string(),
+                                      p + "examples[1]: mesh file not found: " + (dir / "b.obj").string(),
+                                      p + "examples[2]: mesh file not found: " + (dir / "c.obj").string()}));
+  EXPECT_EQ(mc::validate_constraint_file((dir / "three.json").string(), false), std::vector<std::string>{});
+  const std::string shot = (dir / "shot.json").string();
+  EXPECT_EQ(mc::validate_constraint_file(shot, true),
+            std::vector<std::string>{shot + ": examples[0]: mesh file not found: " + (dir / "a.obj").string()});
+  std::ofstream(dir / "a.obj") << "v 0 0 0\n";
+  EXPECT_EQ(mc::validate_constraint_file(shot, true), std::vector<std::string>{});
+  const mc::MeshFiles files = mc::locate_mesh_files(mc::read_constraint_file(shot));
+  EXPECT_EQ(files.rest, (dir / "rest.obj").string());
+  EXPECT_EQ(files.examples, std::vector<std::string>{(dir / "a.obj").string()});
+  fs::remove_all(dir);
+}
+
+TEST(ConstraintLibrary, GlobsSortByNumberAndSkipTheRestMesh) {
+  const fs::path dir = scratch_dir("glob");
+  for (const char* name : {"rest.obj", "pose10.obj", "pose2.obj", "pose02b.obj", "pose1.obj"}) std::ofstream(dir / name) << "v\n";
+  std::ofstream(dir / "shot.json") << R"({"format": "meshik-constraints", "version": 1, "rest": "rest.obj",
+      "examples": "*.obj", "handles": {"a": [0]}, "frames": [{}]})";
+  const mc::MeshFiles files = mc::locate_mesh_files(mc::read_constraint_file((dir / "shot.json").string()));
+  std::vector<std::string> names;
+  for (const std::string& path : files.examples) names.push_back(fs::path(path).filename().string());
+  EXPECT_EQ(names, (std::vector<std::string>{"pose1.obj", "pose2.obj", "pose02b.obj", "pose10.obj"}));
+  fs::remove_all(dir);
+}
+
 TEST(ConstraintLibrary, MissingAndUnreadableFiles) {
   const fs::path dir = scratch_dir("missing");
   EXPECT_EQ(mc::validate_constraint_file((dir / "none.json").string(), true),

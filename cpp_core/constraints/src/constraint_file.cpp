@@ -2,6 +2,7 @@
 #include "meshik/constraints/constraint_file.h"
 
 #include "document_reader.h"
+#include "mesh_files.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -104,8 +105,9 @@ std::vector<std::string> validate_constraint_file(const std::string& path, bool 
   CheckedText checked;
   try {
     checked = check_text(read_bytes(path), path);
-    if (check_mesh_files && checked.mesh_names_read) locate_mesh_files(checked.document);
-  } catch (const ConstraintError& error) {  // an unreadable file, or the first missing mesh
+    if (check_mesh_files && checked.mesh_names_read)
+      for (std::string& problem : mesh_file_problems(checked.document)) checked.messages.push_back(std::move(problem));
+  } catch (const ConstraintError& error) {  // an unreadable file
     checked.messages.push_back(error.what());
   }
   return checked.messages;

@@ -1,5 +1,6 @@
-// locate_mesh_files: the rest and example meshes a constraint document names, found on disk.
-#include "meshik/constraints/constraint_file.h"
+// locate_mesh_files and mesh_file_problems: the rest and example meshes a constraint document
+// names, found on disk.
+#include "mesh_files.h"
 
 #include <glob.h>
 
@@ -88,6 +89,28 @@ std::vector<std::string> glob_files(const ConstraintDocument& document, const fs
 }
 
 }  // namespace
+
+std::vector<std::string> mesh_file_problems(const ConstraintDocument& document) {
+  std::vector<std::string> problems;
+  const fs::path base = fs::path(document.source).parent_path();
+  std::string rest;
+  try {
+    rest = existing_file(document, base, document.rest, "rest");
+  } catch (const ConstraintError& error) {
+    problems.push_back(error.what());
+  }
+  try {
+    if (document.examples_glob) glob_files(document, base, *document.examples_glob, rest);
+  } catch (const ConstraintError& error) {
+    problems.push_back(error.what());
+  }
+  for (std::size_t i = 0; i < document.examples.size(); ++i) try {
+      existing_file(document, base, document.examples[i], "examples[" + std::to_string(i) + "]");
+    } catch (const ConstraintError& error) {
+      problems.push_back(error.what());
+    }
+  return problems;
+}
 
 MeshFiles locate_mesh_files(const ConstraintDocument& document) {
   const fs::path base = fs::path(document.source).parent_path();
