@@ -62,6 +62,7 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   error_ = new QLabel(this);
   error_->setStyleSheet("color: #c00000");
   error_->setWordWrap(true);
+  latency_->setWordWrap(true);
   for (QLabel* label : {handles_, solve_, latency_, error_}) layout->addWidget(label);
 
   layout->addWidget(commandButton(this, tr("Reset pose"), tr("Handles back to their rest positions (R)"),

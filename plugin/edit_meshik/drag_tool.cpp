@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace meshik::edit {
 namespace {
@@ -64,8 +65,9 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
   dock_->setWidget(panel_);
   dock_->setAllowedAreas(Qt::NoDockWidgetArea);
   dock_->setFloating(true);
-  const QPoint corner = area->mapToGlobal(QPoint(area->width(), 0));
-  dock_->setGeometry(corner.x() - 330, corner.y() + 5, 320, std::min(area->height() - 10, 640));
+  // Over the right edge of the main window (its layer list), leaving the 3D view free.
+  const QRect window = area->window()->geometry();
+  dock_->setGeometry(window.right() - 330, window.top() + 60, 320, std::min(window.height() - 80, 660));
   dock_->setVisible(true);
   connect(panel_, &DragDock::examplesChanged, this, &DragTool::rebuildExamples);
   connect(panel_, &DragDock::optionsChanged, this, &DragTool::restartWorker);
@@ -142,7 +144,8 @@ void DragTool::restartWorker() {
   worker_ = std::make_unique<SolveWorker>(example_set_, options, [this] {
     QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection);
   });
-  if (!handles_.empty()) postSolve(false, Clock::now());
+  if (!handles_.empty() && restLayer() != nullptr && plugin::vertexPositions(*restLayer()) != rest_positions_)
+    postSolve(false, Clock::now());  // the pose so far, solved again with the new options
 }
 
 void DragTool::finish() {
@@ -155,6 +158,7 @@ void DragTool::finish() {
   targets_.clear();
   rest_positions_.clear();
   example_ids_.clear();
+  last_weights_.clear();
   latency_.clear();
   delete dock_;  // deletes the panel too
   dock_ = nullptr;
@@ -174,7 +178,8 @@ void DragTool::postSolve(bool cold_start, Clock::time_point event_time) {
   SolveRequest request;
   request.handles = handles_;
   request.targets = targets_;
-  request.cold_start = cold_start;
+  request.cold_start = cold_start || cold_start_next_;
+  cold_start_next_ = false;
   request.first_event = event_time;
   worker_->post(std::move(request));
 }
@@ -199,6 +204,7 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
   }
   if (outcome.result.vertices.size() != 3 * rest->cm.vert.size()) return;  // the layer changed under us
   plugin::setVertexPositions(*rest, outcome.result.vertices);  // positions, normals, bounding box
+  last_weights_ = outcome.result.weights;
   refreshBuffers(*rest);
   const double latency_ms = millisecondsSince(outcome.request.first_event);
   if (drag_) latency_.add(latency_ms);
@@ -321,9 +327,19 @@ void DragTool::handleClick(const Click& click, MeshModel& layer) {
     handles_.erase(handles_.begin() + handle);
     targets_.erase(targets_.begin() + 3 * handle, targets_.begin() + 3 * handle + 3);
   }
-  document_->Log.log(GLLogStream::FILTER, QStringLiteral("MeshIK drag: %1 handles").arg(handles_.size()));
+  QString where;
+  if (!click.remove) {  // where the new handle's marker is on the screen (for scripts driving the GUI)
+    const WindowPoint w = projection_->project(&targets_[targets_.size() - 3]);
+    const double scale = area_->devicePixelRatioF();
+    const QPoint screen = area_->mapToGlobal(QPoint(static_cast<int>(std::lround(w.x / scale)),
+                                                    static_cast<int>(std::lround(area_->height() - w.y / scale))));
+    where = QStringLiteral(", the new one vertex %1 at screen %2 %3").arg(handles_.back()).arg(screen.x()).arg(screen.y());
+  }
+  document_->Log.log(GLLogStream::FILTER, QStringLiteral("MeshIK drag: %1 handles%2").arg(handles_.size()).arg(where));
   if (panel_) panel_->showHandles(static_cast<int>(handles_.size()));
-  postSolve(false, Clock::now());
+  // No solve here: a new handle holds its vertex where it is, so the pose does not jump; the next
+  // move solves with the new handle set (and refactors then).
+  if (area_) area_->update();
 }
 
 void DragTool::decorate(MeshModel& layer, GLArea* area, QPainter*) {
@@ -366,7 +382,8 @@ void DragTool::resetPose() {
     for (int k = 0; k < 3; ++k) targets_[3 * h + k] = rest_positions_[3 * handles_[h] + k];
   plugin::setVertexPositions(*rest, rest_positions_);
   refreshBuffers(*rest);
-  postSolve(true, Clock::now());
+  last_weights_.assign(last_weights_.size(), 0.0);
+  cold_start_next_ = true;  // the next solve starts afresh, not from the last pose's weights
 }
 
 void DragTool::clearHandles() {
@@ -417,7 +434,10 @@ void DragTool::savePose() {
   if (path.isEmpty()) return;
   try {
     meshlab::saveMeshWithStandardParameters(path, *rest, &document_->Log);
-    document_->Log.log(GLLogStream::FILTER, QStringLiteral("MeshIK drag: saved the pose to %1").arg(path));
+    QStringList weights;  // in full: they are the warm start that reproduces this pose
+    for (double w : last_weights_) weights << QString::number(w, 'g', 17);
+    document_->Log.log(GLLogStream::FILTER,
+                       QStringLiteral("MeshIK drag: saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));
   } catch (const MLException& error) {
     report(error.what());
   }

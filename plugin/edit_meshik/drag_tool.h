@@ -75,9 +75,11 @@ class DragTool : public QObject, public EditTool {
   std::unique_ptr<SolveWorker> worker_;
   std::vector<int> handles_;     // #H vertex indices
   std::vector<double> targets_;  // #H by 3
+  std::vector<double> last_weights_;  // #E weights of the pose in the layer (0 at rest)
   std::optional<ScreenProjection> projection_;  // the view of the last frame drawn
   std::optional<Click> pending_click_;
   std::optional<ViewPlaneDrag> drag_;
+  bool cold_start_next_ = false;  // set by "Reset pose"
   SolveWorker::Counts drag_start_counts_;
   LatencyStats latency_;
   QDockWidget* dock_ = nullptr;
