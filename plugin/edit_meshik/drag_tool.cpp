@@ -7,6 +7,7 @@
 #include <common/mlexception.h>
 #include <common/utilities/load_save.h>
 #include <meshlab/glarea.h>
+#include <vcg/complex/algorithms/update/selection.h>
 
 #include <QDockWidget>
 #include <QFileDialog>
@@ -86,6 +87,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
       if (plugin::isDefaultExample(layer, *rest, nullptr)) candidates.emplace_back(layer.label(), layer.id());
     panel_->setExampleLayers(candidates);
     handles_ = plugin::selectedVertices(*rest);
+    layer_has_selection_ = !handles_.empty() || vcg::tri::UpdateSelection<CMeshO>::FaceCount(rest->cm) > 0;
     for (int v : handles_) targets_.insert(targets_.end(), &rest_positions_[3 * v], &rest_positions_[3 * v] + 3);
     panel_->showHandles(static_cast<int>(handles_.size()));
   } catch (const MLException& error) {
@@ -203,10 +205,13 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
     return;
   }
   if (outcome.result.vertices.size() != 3 * rest->cm.vert.size()) return;  // the layer changed under us
+  const Clock::time_point applying = Clock::now();
   plugin::setVertexPositions(*rest, outcome.result.vertices);  // positions, normals, bounding box
   last_weights_ = outcome.result.weights;
   refreshBuffers(*rest);
   const double latency_ms = millisecondsSince(outcome.request.first_event);
+  const double waiting_ms = std::chrono::duration<double, std::milli>(applying - outcome.finished).count();
+  const double buffers_ms = millisecondsSince(applying);
   if (drag_) latency_.add(latency_ms);
   if (panel_) {
     panel_->showError(QString());
@@ -215,7 +220,8 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
   }
   document_->Log.log(GLLogStream::FILTER,
                      QStringLiteral("MeshIK drag: solve %1 (%2 moves%3), %4 iterations, factor %5 ms, solve %6 ms, "
-                                    "latency %7 ms, %8 inverted triangles")
+                                    "latency %7 ms (%9 ms waiting for the GUI thread, %10 ms writing the layer and "
+                                    "its GL buffers), %8 inverted triangles")
                          .arg(outcome.number)
                          .arg(outcome.request.moves)
                          .arg(outcome.refactored ? ", new handle set" : "")
@@ -223,7 +229,9 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
                          .arg(outcome.factor_ms, 0, 'f', 1)
                          .arg(outcome.solve_ms, 0, 'f', 1)
                          .arg(latency_ms, 0, 'f', 1)
-                         .arg(outcome.result.inverted_triangles.size()));
+                         .arg(outcome.result.inverted_triangles.size())
+                         .arg(waiting_ms, 0, 'f', 1)
+                         .arg(buffers_ms, 0, 'f', 1));
 }
 
 void DragTool::refreshBuffers(MeshModel& layer) {
@@ -236,7 +244,7 @@ void DragTool::refreshBuffers(MeshModel& layer) {
     shared_->manageBuffers(layer.id());
   }
   if (area_ != nullptr) {
-    area_->updateSelection(layer.id(), true, true);
+    if (layer_has_selection_) area_->updateSelection(layer.id(), true, true);  // the overlay's own copy
     area_->update();
   }
 }

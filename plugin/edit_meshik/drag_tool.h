@@ -80,6 +80,7 @@ class DragTool : public QObject, public EditTool {
   std::optional<Click> pending_click_;
   std::optional<ViewPlaneDrag> drag_;
   bool cold_start_next_ = false;  // set by "Reset pose"
+  bool layer_has_selection_ = false;  // its selection overlay must follow the vertices
   SolveWorker::Counts drag_start_counts_;
   LatencyStats latency_;
   QDockWidget* dock_ = nullptr;

@@ -108,6 +108,7 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
     outcome.error = error.what();
     outcome.result = SolveResult{};
   }
+  outcome.finished = Clock::now();
   return outcome;
 }
 

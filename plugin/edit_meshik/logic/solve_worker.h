@@ -40,6 +40,7 @@ struct SolveOutcome {
   bool refactored = false;    // a new handle set: the solver was factored for this request
   double factor_ms = 0.0;     // time spent factoring (0 when not refactored)
   double solve_ms = 0.0;      // time spent in Solver::solve
+  Clock::time_point finished;  // when the worker finished it
   std::uint64_t number = 0;   // 1 for the worker's first solve, 2 for the next, ...
 };
 
