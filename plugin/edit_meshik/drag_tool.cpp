@@ -290,12 +290,14 @@ void DragTool::mouseReleaseEvent(QMouseEvent*, MeshModel&, GLArea* area) {
   if (!drag_ || !worker_) return;
   finishPendingSolve();
   const SolveWorker::Counts counts = worker_->counts();
-  const QString summary = QStringLiteral("MeshIK drag: %1 moves, %2 solves (%3 coalesced), latency median %4 ms, max %5 ms")
-                              .arg(counts.moves - drag_start_counts_.moves)
-                              .arg(counts.solves - drag_start_counts_.solves)
-                              .arg(counts.coalesced - drag_start_counts_.coalesced)
-                              .arg(latency_.median(), 0, 'f', 1)
-                              .arg(latency_.max(), 0, 'f', 1);
+  const QString summary =
+      QStringLiteral("MeshIK drag: %1 moves, %2 solves (%3 coalesced, %4 superseded), latency median %5 ms, max %6 ms")
+          .arg(counts.moves - drag_start_counts_.moves)
+          .arg(counts.solves - drag_start_counts_.solves)
+          .arg(counts.coalesced - drag_start_counts_.coalesced)
+          .arg(counts.superseded - drag_start_counts_.superseded)
+          .arg(latency_.median(), 0, 'f', 1)
+          .arg(latency_.max(), 0, 'f', 1);
   document_->Log.log(GLLogStream::FILTER, summary);
   if (panel_) panel_->showLatency(summary.mid(QStringLiteral("MeshIK drag: ").size()));
   drag_.reset();

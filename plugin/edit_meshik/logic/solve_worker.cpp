@@ -75,6 +75,7 @@ void SolveWorker::run() {
     lock.lock();
     running_ = false;
     outcome.number = static_cast<std::uint64_t>(++counts_.solves);
+    if (finished_) ++counts_.superseded;
     finished_ = std::move(outcome);
     if (!pending_) idle_.notify_all();
     if (notify_) {

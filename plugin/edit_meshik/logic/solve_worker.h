@@ -57,17 +57,20 @@ class SolveWorker {
   // Queues `request`, replacing (and folding in) a request that waits and has not started.
   void post(SolveRequest request);
 
-  // The newest finished outcome not taken yet (older untaken ones are dropped), or none.
+  // The newest finished outcome not taken yet, or none. An outcome that finished while an older
+  // one still waited replaces it (counted in Counts::superseded: the GUI was busy drawing).
   std::optional<SolveOutcome> take();
 
   // Blocks until no request waits or runs (for tests and for saving a finished pose).
   void waitIdle();
 
-  // Mouse moves posted, requests solved, requests replaced by a newer one before they started.
+  // Mouse moves posted, requests solved, requests replaced by a newer one before they started,
+  // finished outcomes replaced by a newer one before they were taken.
   struct Counts {
     int moves = 0;
     int solves = 0;
     int coalesced = 0;
+    int superseded = 0;
   };
   Counts counts() const;
 

@@ -151,6 +151,7 @@ TEST(SolveWorker, MovesPostedDuringASolveCoalesceIntoOneRequestWithTheNewestTarg
   EXPECT_EQ(counts.moves, 11);
   EXPECT_EQ(counts.solves, 2);
   EXPECT_EQ(counts.coalesced, 9);
+  EXPECT_EQ(counts.superseded, 1) << "the first outcome was never taken";
   const auto outcome = worker.take();
   ASSERT_TRUE(outcome.has_value());
   EXPECT_EQ(outcome->number, 2u);
