@@ -393,6 +393,7 @@ void DragTool::resetPose() {
   plugin::setVertexPositions(*rest, rest_positions_);
   refreshBuffers(*rest);
   last_weights_.assign(last_weights_.size(), 0.0);
+  if (panel_) panel_->showPose(last_weights_, 0, 0.0, 0);
   cold_start_next_ = true;  // the next solve starts afresh, not from the last pose's weights
 }
 
