@@ -1,17 +1,13 @@
 #include "drag_tool.h"
 
 #include "../layer_arrays.h"
-#include "constraint_frame_writer.h"
 #include "vertex_picking.h"
 
 #include <common/mlexception.h>
-#include <common/utilities/load_save.h>
 #include <meshlab/glarea.h>
 #include <vcg/complex/algorithms/update/selection.h>
 
 #include <QDockWidget>
-#include <QFileDialog>
-#include <QFileInfo>
 #include <QKeyEvent>
 #include <QMouseEvent>
 
@@ -403,55 +399,6 @@ void DragTool::clearHandles() {
   drag_.reset();
   if (panel_) panel_->showHandles(0);
   if (area_) area_->update();
-}
-
-void DragTool::saveConstraintFile() {
-  MeshModel* rest = restLayer();
-  if (rest == nullptr || area_ == nullptr) return;
-  finishPendingSolve();
-  const QString start = QFileInfo(rest->fullName()).absolutePath() + "/drag.json";
-  const QString path = QFileDialog::getSaveFileName(area_->window(), tr("Save constraint file"), start,
-                                                    tr("MeshIK constraint files (*.json)"), nullptr,
-                                                    QFileDialog::DontUseNativeDialog);
-  if (path.isEmpty()) return;
-  DragFrame frame;
-  frame.rest_path = rest->fullName().isEmpty() ? std::string() : QFileInfo(rest->fullName()).absoluteFilePath().toStdString();
-  for (int id : example_ids_) {
-    MeshModel* example = document_->getMesh(static_cast<unsigned>(id));
-    frame.example_paths.push_back(example == nullptr || example->fullName().isEmpty()
-                                      ? std::string()
-                                      : QFileInfo(example->fullName()).absoluteFilePath().toStdString());
-  }
-  frame.linear_feature_space = panel_ && panel_->linearFeatureSpace();
-  frame.weight_regularization = panel_ ? panel_->weightRegularization() : 0.0;
-  frame.handles = handles_;
-  frame.targets = targets_;
-  try {
-    writeConstraintFrame(path.toStdString(), frame);
-    document_->Log.log(GLLogStream::FILTER, QStringLiteral("MeshIK drag: saved %1 handles to %2").arg(handles_.size()).arg(path));
-  } catch (const ConstraintWriteError& error) {
-    report(QString::fromStdString(error.what()));
-  }
-}
-
-void DragTool::savePose() {
-  MeshModel* rest = restLayer();
-  if (rest == nullptr || area_ == nullptr) return;
-  finishPendingSolve();
-  const QString start = QFileInfo(rest->fullName()).absolutePath() + "/pose.ply";
-  const QString path = QFileDialog::getSaveFileName(area_->window(), tr("Save pose"), start,
-                                                    tr("Meshes (*.ply *.obj *.off *.stl)"), nullptr,
-                                                    QFileDialog::DontUseNativeDialog);
-  if (path.isEmpty()) return;
-  try {
-    meshlab::saveMeshWithStandardParameters(path, *rest, &document_->Log);
-    QStringList weights;  // in full: they are the warm start that reproduces this pose
-    for (double w : last_weights_) weights << QString::number(w, 'g', 17);
-    document_->Log.log(GLLogStream::FILTER,
-                       QStringLiteral("MeshIK drag: saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));
-  } catch (const MLException& error) {
-    report(error.what());
-  }
 }
 
 void DragTool::poseToNewLayer() {

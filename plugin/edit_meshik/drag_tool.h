@@ -56,6 +56,9 @@ class DragTool : public QObject, public EditTool {
   };
 
   void finish();
+  // Asks for a file to save to (title, suggested name beside the rest mesh's file, filter) once
+  // the newest pose is in the layer; empty when cancelled or when the tool is not running.
+  QString askSavePath(const QString& title, const QString& file_name, const QString& filter);
   MeshModel* restLayer() const;
   void report(const QString& error);
   void postSolve(bool cold_start, Clock::time_point event_time);
