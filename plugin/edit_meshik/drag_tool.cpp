@@ -86,7 +86,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
     layer_has_selection_ = !handles_.empty() || vcg::tri::UpdateSelection<CMeshO>::FaceCount(rest->cm) > 0;
     for (int v : handles_) targets_.insert(targets_.end(), &rest_positions_[3 * v], &rest_positions_[3 * v] + 3);
     panel_->showHandles(static_cast<int>(handles_.size()));
-  } catch (const MLException& error) {
+  } catch (const std::exception& error) {  // MLException and anything else: never into MeshLab
     report(error.what());
     return true;  // the dock shows the error; nothing else happens until the user fixes the layers
   }
@@ -126,7 +126,7 @@ void DragTool::rebuildExamples() {
                                                 .arg(plugin::describeLayer(*rest))
                                                 .arg(examples.size())
                                                 .arg(handles_.size()));
-  } catch (const MLException& error) {
+  } catch (const std::exception& error) {
     report(error.what());
     return;
   }
@@ -158,7 +158,7 @@ void DragTool::finish() {
   example_ids_.clear();
   last_weights_.clear();
   latency_.clear();
-  delete dock_;  // deletes the panel too
+  delete dock_.data();  // deletes the panel too (null when MeshLab's window already deleted it)
   dock_ = nullptr;
   panel_ = nullptr;
   rest_id_ = -1;

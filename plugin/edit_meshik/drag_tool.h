@@ -12,13 +12,13 @@
 
 #include <common/plugins/interfaces/edit_plugin.h>
 
+#include <QDockWidget>
 #include <QObject>
+#include <QPointer>
 
 #include <memory>
 #include <optional>
 #include <vector>
-
-class QDockWidget;
 
 namespace meshik::edit {
 
@@ -86,8 +86,8 @@ class DragTool : public QObject, public EditTool {
   bool layer_has_selection_ = false;  // its selection overlay must follow the vertices
   SolveWorker::Counts drag_start_counts_;
   LatencyStats latency_;
-  QDockWidget* dock_ = nullptr;
-  DragDock* panel_ = nullptr;
+  QPointer<QDockWidget> dock_;
+  QPointer<DragDock> panel_;
 };
 
 }  // namespace meshik::edit

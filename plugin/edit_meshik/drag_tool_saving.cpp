@@ -45,7 +45,7 @@ void DragTool::saveConstraintFile() {
     writeConstraintFrame(path.toStdString(), frame);
     document_->Log.log(GLLogStream::FILTER,
                        QStringLiteral("MeshIK drag: saved %1 handles to %2").arg(handles_.size()).arg(path));
-  } catch (const ConstraintWriteError& error) {
+  } catch (const std::exception& error) {  // ConstraintWriteError, or no memory for the text
     report(QString::fromStdString(error.what()));
   }
 }
@@ -60,7 +60,7 @@ void DragTool::savePose() {
     for (double w : last_weights_) weights << QString::number(w, 'g', 17);
     document_->Log.log(GLLogStream::FILTER,
                        QStringLiteral("MeshIK drag: saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));
-  } catch (const MLException& error) {
+  } catch (const std::exception& error) {  // MLException from MeshLab's IO plugins, and the rest
     report(error.what());
   }
 }
