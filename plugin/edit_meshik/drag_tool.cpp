@@ -143,7 +143,7 @@ void DragTool::restartWorker() {
     QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection);
   });
   if (!handles_.empty() && restLayer() != nullptr && plugin::vertexPositions(*restLayer()) != rest_positions_)
-    postSolve(false, Clock::now());  // the pose so far, solved again with the new options
+    postSolve(false, Clock::now());  // the pose so far, solved again (to convergence) with the new options
 }
 
 void DragTool::finish() {
@@ -171,12 +171,13 @@ void DragTool::endEdit(MeshDocument&, GLArea*, MLSceneGLSharedDataContext*) { fi
 
 void DragTool::endEdit(MeshModel&, GLArea*, MLSceneGLSharedDataContext*) { finish(); }
 
-void DragTool::postSolve(bool cold_start, Clock::time_point event_time) {
+void DragTool::postSolve(bool quick, Clock::time_point event_time) {
   if (!worker_ || handles_.empty()) return;
   SolveRequest request;
+  request.quick = quick;
   request.handles = handles_;
   request.targets = targets_;
-  request.cold_start = cold_start || cold_start_next_;
+  request.cold_start = cold_start_next_;
   cold_start_next_ = false;
   request.first_event = event_time;
   worker_->post(std::move(request));
@@ -215,7 +216,7 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
                      static_cast<int>(outcome.result.inverted_triangles.size()));
   }
   document_->Log.log(GLLogStream::FILTER,
-                     QStringLiteral("MeshIK drag: solve %1 (%2 moves%3), %4 iterations, factor %5 ms, solve %6 ms, "
+                     QStringLiteral("MeshIK drag: %11 %1 (%2 moves%3), %4 iterations, factor %5 ms, solve %6 ms, "
                                     "latency %7 ms (%9 ms waiting for the GUI thread, %10 ms writing the layer and "
                                     "its GL buffers), %8 inverted triangles")
                          .arg(outcome.number)
@@ -227,7 +228,8 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
                          .arg(latency_ms, 0, 'f', 1)
                          .arg(outcome.result.inverted_triangles.size())
                          .arg(waiting_ms, 0, 'f', 1)
-                         .arg(buffers_ms, 0, 'f', 1));
+                         .arg(buffers_ms, 0, 'f', 1)
+                         .arg(converged_solve_ ? "converged solve" : "solve"));
 }
 
 void DragTool::refreshBuffers(MeshModel& layer) {
@@ -278,7 +280,7 @@ void DragTool::mouseMoveEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
   const Clock::time_point now = Clock::now();
   const auto [x, y] = glPosition(event);
   targets_ = drag_->targetsAt(x, y);
-  postSolve(false, now);
+  postSolve(true, now);  // one warm-started Gauss-Newton step per move; the release converges
   area->update();
 }
 
@@ -286,6 +288,11 @@ void DragTool::mouseReleaseEvent(QMouseEvent*, MeshModel&, GLArea* area) {
   if (!drag_ || !worker_) return;
   finishPendingSolve();
   const SolveWorker::Counts counts = worker_->counts();
+  drag_.reset();
+  converged_solve_ = true;  // the pose left in the layer is a converged one
+  postSolve(false, Clock::now());
+  finishPendingSolve();
+  converged_solve_ = false;
   const QString summary =
       QStringLiteral("MeshIK drag: %1 moves, %2 solves (%3 coalesced, %4 superseded), latency median %5 ms, max %6 ms")
           .arg(counts.moves - drag_start_counts_.moves)
@@ -296,7 +303,6 @@ void DragTool::mouseReleaseEvent(QMouseEvent*, MeshModel&, GLArea* area) {
           .arg(latency_.max(), 0, 'f', 1);
   document_->Log.log(GLLogStream::FILTER, summary);
   if (panel_) panel_->showLatency(summary.mid(QStringLiteral("MeshIK drag: ").size()));
-  drag_.reset();
   area->update();
 }
 

@@ -61,7 +61,8 @@ class DragTool : public QObject, public EditTool {
   QString askSavePath(const QString& title, const QString& file_name, const QString& filter);
   MeshModel* restLayer() const;
   void report(const QString& error);
-  void postSolve(bool cold_start, Clock::time_point event_time);
+  // Posts the handles' current targets; quick: one Gauss-Newton step (a move during a drag).
+  void postSolve(bool quick, Clock::time_point event_time);
   void applyOutcome(const SolveOutcome& outcome);
   void handleClick(const Click& click, MeshModel& layer);
   void finishPendingSolve();
@@ -83,6 +84,7 @@ class DragTool : public QObject, public EditTool {
   std::optional<Click> pending_click_;
   std::optional<ViewPlaneDrag> drag_;
   bool cold_start_next_ = false;  // set by "Reset pose"
+  bool converged_solve_ = false;  // the solve being applied is the end of a drag's (for the log)
   bool layer_has_selection_ = false;  // its selection overlay must follow the vertices
   SolveWorker::Counts drag_start_counts_;
   LatencyStats latency_;

@@ -39,6 +39,7 @@ void SolveWorker::post(SolveRequest request) {
       request.moves += pending_->moves;
       request.first_event = std::min(request.first_event, pending_->first_event);
       request.cold_start = request.cold_start || pending_->cold_start;
+      request.quick = request.quick && pending_->quick;  // a full request stays full
     }
     pending_ = std::move(request);
   }
@@ -91,15 +92,9 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
   outcome.request = request;
   try {
     if (request.cold_start) warm_weights_.clear();
-    if (!solver_ || solver_->handles() != request.handles) {
-      const Clock::time_point start = Clock::now();
-      solver_.reset();
-      solver_ = std::make_shared<const Solver>(examples_, request.handles, options_);
-      outcome.refactored = true;
-      outcome.factor_ms = millisecondsSince(start);
-    }
+    const Solver& solver = solverFor(request, outcome);
     const Clock::time_point start = Clock::now();
-    outcome.result = solver_->solve(request.targets.data(), warm_weights_.empty() ? nullptr : warm_weights_.data());
+    outcome.result = solver.solve(request.targets.data(), warm_weights_.empty() ? nullptr : warm_weights_.data());
     outcome.solve_ms = millisecondsSince(start);
     for (size_t i = 0; i < outcome.result.vertices.size(); ++i)
       if (!std::isfinite(outcome.result.vertices[i]))
@@ -111,6 +106,20 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
   }
   outcome.finished = Clock::now();
   return outcome;
+}
+
+const Solver& SolveWorker::solverFor(const SolveRequest& request, SolveOutcome& outcome) {
+  std::shared_ptr<const Solver>& solver = request.quick ? quick_solver_ : full_solver_;
+  if (!solver || solver->handles() != request.handles) {
+    const Clock::time_point start = Clock::now();
+    solver.reset();  // free the old factorization first
+    SolverOptions options = options_;
+    if (request.quick) options.max_iterations = 1;
+    solver = std::make_shared<const Solver>(examples_, request.handles, options);
+    outcome.refactored = true;
+    outcome.factor_ms = millisecondsSince(start);
+  }
+  return *solver;
 }
 
 }  // namespace meshik::edit

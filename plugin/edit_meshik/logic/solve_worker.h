@@ -3,7 +3,11 @@
 // The GUI thread posts one request per mouse move. A request posted while another waits replaces
 // it (coalescing: only the newest targets matter), so a slow solve never builds a queue; the
 // worker always ends on the newest targets. A new handle set refactors (a new Solver); a move
-// only solves, warm-started from the previous pose's weights. Finished poses are handed back
+// only solves, warm-started from the previous pose's weights. A quick request (a move during a
+// drag) takes one Gauss-Newton step from there, which the warm start makes nearly the whole way
+// (the full solve's second step typically only confirms convergence); a full request (the end of
+// a drag) iterates to convergence. Quick and full requests use two solvers (each factors once per
+// handle set), since the iteration limit is a solver option. Finished poses are handed back
 // through take() on the GUI thread, which alone writes the mesh; `notify` (called on the
 // worker's thread) tells it there is one.
 #pragma once
@@ -29,6 +33,7 @@ struct SolveRequest {
   std::vector<int> handles;     // #H vertex indices
   std::vector<double> targets;  // #H by 3 row-major targets, in the order of handles
   bool cold_start = false;      // forget the warm-start weights first (after "Reset pose")
+  bool quick = false;           // one Gauss-Newton step (during a drag) instead of convergence
   int moves = 1;                // mouse moves folded into this request
   Clock::time_point first_event = Clock::now();  // when the oldest of them happened
 };
@@ -77,6 +82,8 @@ class SolveWorker {
  private:
   void run();
   SolveOutcome solve(const SolveRequest& request);
+  // The solver for the request's handle set and kind (quick or full), factored when it is new.
+  const Solver& solverFor(const SolveRequest& request, SolveOutcome& outcome);
 
   const std::shared_ptr<const ExampleSet> examples_;
   const SolverOptions options_;
@@ -92,7 +99,8 @@ class SolveWorker {
   Counts counts_;
 
   // Touched only by the worker thread.
-  std::shared_ptr<const Solver> solver_;
+  std::shared_ptr<const Solver> full_solver_;
+  std::shared_ptr<const Solver> quick_solver_;
   std::vector<double> warm_weights_;
 
   std::thread thread_;  // last: starts after everything above is ready

@@ -138,6 +138,7 @@ TEST(SolveWorker, MovesPostedDuringASolveCoalesceIntoOneRequestWithTheNewestTarg
   for (int i = 1; i <= 10; ++i) {
     meshik::edit::SolveRequest r = scene.request(0.1 + 0.05 * i);
     r.first_event = first_event + std::chrono::milliseconds(i);
+    r.quick = i != 4;  // one full request among quick ones makes the folded request full
     newest = r.targets;
     worker.post(std::move(r));
   }
@@ -158,6 +159,7 @@ TEST(SolveWorker, MovesPostedDuringASolveCoalesceIntoOneRequestWithTheNewestTarg
   EXPECT_EQ(outcome->request.moves, 10);
   EXPECT_TRUE(outcome->request.first_event == first_event + std::chrono::milliseconds(1));
   EXPECT_EQ(outcome->request.targets, newest) << "the newest targets";
+  EXPECT_FALSE(outcome->request.quick);
   EXPECT_FALSE(outcome->refactored) << "a move never refactors";
   EXPECT_TRUE(outcome->error.empty()) << outcome->error;
   EXPECT_FALSE(worker.take().has_value()) << "the older outcome was dropped, the newest taken";
@@ -191,6 +193,29 @@ TEST(SolveWorker, ANewHandleSetRefactorsAndTheSolveMatchesTheSolverWarmStarted) 
   ASSERT_TRUE(third && third->error.empty());
   EXPECT_TRUE(third->refactored);
   EXPECT_NEAR(third->result.vertices[0], scene.meshes.rest[0], 1e-9) << "the new handle holds";
+}
+
+TEST(SolveWorker, QuickRequestsTakeOneStepAndAFullOneConvergesFromThere) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {});
+  meshik::edit::SolveRequest quick = scene.request(0.4);
+  quick.quick = true;
+  worker.post(quick);
+  worker.waitIdle();
+  const auto stepped = worker.take();
+  ASSERT_TRUE(stepped && stepped->error.empty());
+  EXPECT_EQ(stepped->result.iterations, 1);
+  EXPECT_TRUE(stepped->refactored);
+
+  worker.post(scene.request(0.4));
+  worker.waitIdle();
+  const auto full = worker.take();
+  ASSERT_TRUE(full && full->error.empty());
+  EXPECT_TRUE(full->refactored) << "the full solver is a second one";
+  EXPECT_TRUE(full->result.converged);
+  const meshik::Solver solver(scene.examples, scene.handles);
+  const auto targets = scene.request(0.4).targets;
+  EXPECT_EQ(full->result.vertices, solver.solve(targets.data(), stepped->result.weights.data()).vertices);
 }
 
 TEST(SolveWorker, ASolveTheCoreRefusesComesBackAsAnErrorAndTheWorkerGoesOn) {
