@@ -158,6 +158,9 @@ void DragTool::finish() {
   example_ids_.clear();
   last_weights_.clear();
   latency_.clear();
+  cold_start_next_ = false;
+  converged_solve_ = false;
+  layer_has_selection_ = false;
   delete dock_.data();  // deletes the panel too (null when MeshLab's window already deleted it)
   dock_ = nullptr;
   panel_ = nullptr;
