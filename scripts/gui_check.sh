@@ -8,11 +8,19 @@
 # xdotool. Fails loudly unless: no "Error while loading plugins." dialog appears, MeshLab keeps
 # running, both MeshIK filters open from the Filters menu, and the pose filter runs on the sample
 # (handles and targets from a frame of the sample's constraint file) and writes its LOG: lines.
-# Screenshots for a person to look at go to gui_check_output/<precision>/.
+# Then the edit tool "MeshIK: Drag to Pose" (edit plugin edit_meshik), on the sample and, with
+# ../shared/data present, on the horse and the elephant (rest + 4 examples each): started from
+# the Edit menu by keyboard, 3 handles added by clicking on the mesh, one dragged in 24 mouse-move
+# steps, the constraint file and the posed layer saved through the tool's file dialogs; checked: a solve logged per move (or
+# folded into a later one), the layer moved, the saved pose equals meshik.Solver on the saved file's
+# handles and targets (scripts/gui_check_drag.py), MeshLab answers the Edit menu afterwards, no
+# error dialog or warning. The drag latency (mouse-move event to updated GL buffers, median and
+# max) is printed. Screenshots for a person to look at go to gui_check_output/<precision>/.
 #
 # Usage: scripts/gui_check.sh [float|double]
 # Env:   BUILD (CMake build folder, default build), SAMPLE (sample_meshes/<set>, default limb),
-#        FRAME (constraint-file frame, default the middle one), JOBS (default 2)
+#        FRAME (constraint-file frame, default the middle one), JOBS (default 2),
+#        MESHIK_SHARED_DATA (the real example sets, default ../shared/data)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 precision=${1:-float}
@@ -21,8 +29,8 @@ sample=${SAMPLE:-limb}
 out=$root/gui_check_output/$precision
 
 case $precision in
-  float) plugin_target=filter_meshik_float; settings=MeshLab_64bit_fp; version=2025.07 ;;
-  double) plugin_target=filter_meshik; settings=MeshLab_64bit_dp; version=2025.07d ;;
+  float) plugin_target=filter_meshik_float; edit_target=edit_meshik_float; settings=MeshLab_64bit_fp; version=2025.07 ;;
+  double) plugin_target=filter_meshik; edit_target=edit_meshik; settings=MeshLab_64bit_dp; version=2025.07d ;;
   *) echo "gui_check: precision must be float or double, not '$precision'" >&2; exit 2 ;;
 esac
 
@@ -46,10 +54,12 @@ install_gui_packages
 step "building the MeshLab GUI (about 10 minutes the first time)"
 meshlab=$("$root/scripts/build_meshlab.sh" "$precision" gui | tail -n 1)
 [[ -x $meshlab ]] || fail "no MeshLab executable at $meshlab"
-step "building the plugin ($plugin_target)"
-cmake --build "$build" -j "${JOBS:-2}" --target "$plugin_target" >/dev/null || fail "the plugin did not build"
+step "building the plugins ($plugin_target, $edit_target)"
+cmake --build "$build" -j "${JOBS:-2}" --target "$plugin_target" "$edit_target" >/dev/null || fail "the plugins did not build"
 plugin=$build/plugin/$precision/libfilter_meshik.so
+edit_plugin=$build/plugin/$precision/libedit_meshik.so
 [[ -f $plugin ]] || fail "no plugin at $plugin"
+[[ -f $edit_plugin ]] || fail "no plugin at $edit_plugin"
 
 sample_dir=$root/sample_meshes/$sample
 constraints=$sample_dir/animation.json
@@ -66,21 +76,27 @@ rm -rf "$out"
 mkdir -p "$out/config/VCG" "$out/data/VCG/$settings/MeshLabExtraPlugins/$version" "$out/runtime"
 chmod 700 "$out/runtime"
 printf '[General]\ninformativeShown=true\n' > "$out/config/VCG/$settings.conf"
-cp "$plugin" "$out/data/VCG/$settings/MeshLabExtraPlugins/$version/"
+cp "$plugin" "$edit_plugin" "$out/data/VCG/$settings/MeshLabExtraPlugins/$version/"
 
-# The project: the example poses as hidden layers, then the rest mesh (visible, the current layer).
+# Writes the MeshLab project $1: the example poses (files $3 ...) as hidden layers, then the rest
+# mesh (file $2; visible, the current layer).
+write_project() {
+  local project=$1 rest=$2 example
+  shift 2
+  {
+    echo '<!DOCTYPE MeshLabDocument>'
+    echo '<MeshLabProject>'
+    echo ' <MeshGroup>'
+    for example in "$@"; do
+      echo "  <MLMesh label=\"$(basename "$example" .obj)\" filename=\"$example\" visible=\"0\"/>"
+    done
+    echo "  <MLMesh label=\"rest\" filename=\"$rest\" visible=\"1\"/>"
+    echo ' </MeshGroup>'
+    echo '</MeshLabProject>'
+  } > "$project"
+}
 project=$out/sample.mlp
-{
-  echo '<!DOCTYPE MeshLabDocument>'
-  echo '<MeshLabProject>'
-  echo ' <MeshGroup>'
-  for example in "$sample_dir"/example_*.obj; do
-    echo "  <MLMesh label=\"$(basename "$example" .obj)\" filename=\"$example\" visible=\"0\"/>"
-  done
-  echo "  <MLMesh label=\"rest\" filename=\"$sample_dir/rest.obj\" visible=\"1\"/>"
-  echo ' </MeshGroup>'
-  echo '</MeshLabProject>'
-} > "$project"
+write_project "$project" "$sample_dir/rest.obj" "$sample_dir"/example_*.obj
 num_layers=$(grep -c '<MLMesh' "$project")
 
 # --- Xvfb and MeshLab ------------------------------------------------------------------------
@@ -92,17 +108,12 @@ export DISPLAY=:$display_number
 pids=()
 cleanup() { local pid; for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; }
 trap cleanup EXIT
-Xvfb "$DISPLAY" -screen 0 1600x1000x24 -nolisten tcp >"$out/xvfb.log" 2>&1 &
+Xvfb "$DISPLAY" -screen 0 1600x1000x24 -nolisten tcp -noreset >"$out/xvfb.log" 2>&1 &
 xvfb_pid=$!
 pids+=("$xvfb_pid")
 for _ in $(seq 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.1; done
 xdpyinfo >/dev/null 2>&1 && kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb did not start on $DISPLAY (see $out/xvfb.log)"
 
-step "starting $meshlab with $sample ($num_layers layers)"
-LIBGL_ALWAYS_SOFTWARE=1 XDG_CONFIG_HOME=$out/config XDG_DATA_HOME=$out/data XDG_RUNTIME_DIR=$out/runtime \
-  "$meshlab" "$project" >"$out/meshlab.log" 2>&1 &
-meshlab_pid=$!
-pids=("$meshlab_pid" "${pids[@]}")
 
 # Prints the id of the first window whose name matches $1, waiting up to $2 seconds.
 wait_window() {
@@ -115,7 +126,7 @@ wait_window() {
 }
 alive() {
   kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb on $DISPLAY exited (see $out/xvfb.log)"
-  kill -0 "$meshlab_pid" 2>/dev/null || fail "MeshLab is no longer running (see $out/meshlab.log)"
+  kill -0 "$meshlab_pid" 2>/dev/null || fail "MeshLab is no longer running (see $meshlab_log)"
 }
 no_dialog() {
   ! xdotool search --name "$1" >/dev/null 2>&1 || { shot "error_dialog"; fail "MeshLab shows the dialog \"$1\""; }
@@ -126,25 +137,43 @@ shot_window() {  # $1 file name, $2 window
   import -window root -crop "${WIDTH}x${HEIGHT}+${X}+${Y}" "$out/$1.png"
 }
 
-# A plugin that fails to load is reported only in a modal dialog, shown before the main window.
-deadline=$((SECONDS + 60))
-until main_window=$(xdotool search --name "MeshLab $version" 2>/dev/null | head -n 1) && [[ -n $main_window ]]; do
+# Starts MeshLab on the project $1 with its output in the log $2 (sets meshlab_pid, meshlab_log and
+# main_window), and waits until its window is up, full screen, and no plugin failed to load.
+start_meshlab() {
+  meshlab_log=$2
+  LIBGL_ALWAYS_SOFTWARE=1 XDG_CONFIG_HOME=$out/config XDG_DATA_HOME=$out/data XDG_RUNTIME_DIR=$out/runtime \
+    "$meshlab" "$1" >"$meshlab_log" 2>&1 &
+  meshlab_pid=$!
+  pids=("$meshlab_pid" "${pids[@]}")
+  # A plugin that fails to load is reported only in a modal dialog, shown before the main window.
+  local deadline=$((SECONDS + 60))
+  until main_window=$(xdotool search --name "MeshLab $version" 2>/dev/null | head -n 1) && [[ -n $main_window ]]; do
+    no_dialog "Error while loading plugins"
+    alive
+    ((SECONDS < deadline)) || { shot "no_window"; fail "no MeshLab window within 60 s (see $meshlab_log)"; }
+    sleep 0.25
+  done
+  sleep 3
   no_dialog "Error while loading plugins"
   alive
-  ((SECONDS < deadline)) || { shot "no_window"; fail "no MeshLab window within 60 s (see $out/meshlab.log)"; }
-  sleep 0.25
-done
-sleep 3
-no_dialog "Error while loading plugins"
-alive
-# Full screen, so that the layer list and the dialogs land where the steps below expect them.
-for _ in $(seq 20); do
-  xdotool windowmove "$main_window" 0 0 windowsize "$main_window" 1600 1000
-  sleep 0.5
-  eval "$(xdotool getwindowgeometry --shell "$main_window")"
-  [[ $WIDTH == 1600 && $HEIGHT == 1000 ]] && break
-done
-[[ $WIDTH == 1600 && $HEIGHT == 1000 ]] || fail "could not resize the MeshLab window to 1600x1000"
+  # Full screen, so that the layer list and the dialogs land where the steps below expect them.
+  for _ in $(seq 20); do
+    xdotool windowmove "$main_window" 0 0 windowsize "$main_window" 1600 1000
+    sleep 0.5
+    eval "$(xdotool getwindowgeometry --shell "$main_window")"
+    [[ $WIDTH == 1600 && $HEIGHT == 1000 ]] && break
+  done
+  [[ $WIDTH == 1600 && $HEIGHT == 1000 ]] || fail "could not resize the MeshLab window to 1600x1000"
+}
+
+# Ends the running MeshLab (the GUI check's own process).
+stop_meshlab() {
+  kill "$meshlab_pid" 2>/dev/null || true
+  wait "$meshlab_pid" 2>/dev/null || true
+}
+
+step "starting $meshlab with $sample ($num_layers layers)"
+start_meshlab "$project" "$out/meshlab.log"
 shot 01_started
 
 # Opens Filters > "Smoothing, Fairing and Deformation" and its item number $1 (1: Blend, 2: Pose);
@@ -224,4 +253,126 @@ alive
 
 step "log lines:"
 grep "LOG: .*MeshIK" "$out/meshlab.log" | sed 's/^/  /'
+stop_meshlab
+
+# --- The edit tool "MeshIK: Drag to Pose" -------------------------------------------------------
+# Waits up to $2 seconds for a line of the MeshLab log matching the extended regex $1; prints the last.
+wait_log() {
+  local deadline=$((SECONDS + $2))
+  until grep -qE "$1" "$meshlab_log"; do
+    alive
+    ((SECONDS < deadline)) || return 1
+    sleep 0.2
+  done
+  grep -E "$1" "$meshlab_log" | tail -n 1
+}
+
+# Drives the tool on the project $2 (screenshots and files named after $1).
+drive_drag_tool() {
+  local name=$1 line i
+  step "$name: starting MeshLab and MeshIK: Drag to Pose from the Edit menu"
+  start_meshlab "$2" "$out/meshlab_$name.log"
+  xdotool mousemove 200 990 click 1  # the status bar: focuses the main window
+  sleep 0.3
+  xdotool key alt+e
+  sleep 0.7
+  shot "${name}_1_edit_menu"
+  xdotool key Up Return  # up from the first item wraps to the last one: ours (the last plugin loaded)
+  wait_window "MeshIK: Drag to Pose" 20 >/dev/null || { shot "${name}_no_dock"; fail "$name: the tool's dock did not open"; }
+  wait_log "MeshIK drag: rest layer .* [0-9]+ example layers" 60 >/dev/null ||
+    fail "$name: the tool did not read the example layers (see $meshlab_log)"
+  sleep 1
+  shot "${name}_2_tool_started"
+
+  # Three points on the mesh (both ends and the middle of its longest screen axis), clicked one by one.
+  local points
+  points=$("$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" points "$out/${name}_2_tool_started.png" 5 1120 70 870) ||
+    fail "$name: could not find the mesh in the screenshot"
+  local count=0 grab_x grab_y
+  while read -r x y; do
+    count=$((count + 1))
+    xdotool mousemove "$x" "$y" click 1
+    line=$(wait_log "MeshIK drag: $count handles, the new one vertex" 20) ||
+      { shot "${name}_click_$count"; fail "$name: clicking the mesh at $x $y added no handle $count (see $meshlab_log)"; }
+    read -r grab_x grab_y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
+  done <<<"$points"
+  shot "${name}_3_handles"
+
+  step "$name: dragging the last handle (at $grab_x $grab_y) in 24 mouse moves"
+  xdotool mousemove "$grab_x" "$grab_y"
+  sleep 0.3
+  xdotool mousedown 1
+  sleep 0.3
+  for i in $(seq 24); do
+    xdotool mousemove_relative -- 0 -8
+    if ((i == 12)); then shot "${name}_4_during_drag"; fi
+    sleep 0.05
+  done
+  sleep 0.2
+  xdotool mouseup 1
+  local summary
+  summary=$(wait_log "MeshIK drag: [0-9]+ moves, [0-9]+ solves" 30) || fail "$name: the drag logged no summary (see $meshlab_log)"
+  sleep 0.5
+  shot "${name}_5_after_drag"
+  # Every move is solved, or folded into a later request (coalesced); every solve is shown and
+  # logged, or replaced by a newer one while the GUI thread was busy drawing (superseded).
+  local moves solves coalesced superseded logged
+  read -r moves solves coalesced superseded < <(sed -E \
+    's/.*: ([0-9]+) moves, ([0-9]+) solves \(([0-9]+) coalesced, ([0-9]+) superseded\).*/\1 \2 \3 \4/' <<<"$summary")
+  logged=$(grep -cE "MeshIK drag: solve [0-9]+ " "$meshlab_log")
+  ((moves >= 20)) || fail "$name: only $moves of 24 mouse moves reached the tool"
+  ((solves + coalesced == moves)) || fail "$name: $moves moves but $solves solves and $coalesced coalesced"
+  ((logged + superseded == solves)) || fail "$name: $solves solves, $superseded superseded, but $logged solve lines logged"
+
+  # Save the constraint file and the posed layer through the tool's dialogs (keys S and P).
+  local constraints_out=$out/${name}_drag.json pose_out=$out/${name}_pose.ply dialog
+  xdotool mousemove 300 120 key s
+  dialog=$(wait_window "Save constraint file" 10) || { shot "${name}_no_save_dialog"; fail "$name: no \"Save constraint file\" dialog"; }
+  sleep 0.5
+  xdotool key ctrl+a
+  xdotool type --delay 5 "$constraints_out"
+  xdotool key Return
+  wait_log "MeshIK drag: saved [0-9]+ handles to $constraints_out" 10 >/dev/null || fail "$name: the constraint file was not saved"
+  xdotool mousemove 300 120 key p
+  dialog=$(wait_window "Save pose" 10) || { shot "${name}_no_pose_dialog"; fail "$name: no \"Save pose\" dialog"; }
+  sleep 0.5
+  xdotool key ctrl+a
+  xdotool type --delay 5 "$pose_out"
+  xdotool key Return
+  line=$(wait_log "MeshIK drag: saved the pose to $pose_out" 30) || fail "$name: the pose was not saved"
+  local weights
+  weights=$(sed -E 's/.*\(weights \[(.*)\]\).*/\1/' <<<"$line")
+
+  # MeshLab still answers: the Edit menu opens and ends the tool (its dock closes).
+  xdotool mousemove 200 990 click 1
+  sleep 0.3
+  xdotool key alt+e
+  sleep 0.7
+  shot "${name}_6_edit_menu_after"
+  xdotool key Up Return
+  local deadline=$((SECONDS + 10))
+  while xdotool search --name "MeshIK: Drag to Pose" >/dev/null 2>&1; do
+    ((SECONDS < deadline)) || fail "$name: the Edit menu did not end the tool"
+    sleep 0.25
+  done
+  no_dialog "Filter Failure"
+  alive
+  ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$name: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
+  "$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" check "$constraints_out" "$pose_out" "$weights" \
+    >"$out/${name}_check.txt" 2>&1 || { cat "$out/${name}_check.txt" >&2; fail "$name: the saved pose is wrong"; }
+  step "$name: $(tail -n 1 "$out/${name}_check.txt")"
+  step "$name: $moves moves, $solves solves ($coalesced coalesced, $superseded superseded); latency (mouse move to updated GL buffers) $(sed -E 's/.*latency //' <<<"$summary")"
+  stop_meshlab
+}
+
+drive_drag_tool "$sample" "$project"
+shared_data=${MESHIK_SHARED_DATA:-$root/../shared/data}
+for set in horse elephant; do  # the rest pose and 4 examples of each real set
+  if [[ -f $shared_data/$set-poses/reference.obj ]]; then
+    write_project "$out/$set.mlp" "$shared_data/$set-poses/reference.obj" "$shared_data/$set-poses"/{1,2,3,4}.obj
+    drive_drag_tool "$set" "$out/$set.mlp"
+  else
+    step "no $set at $shared_data/$set-poses: skipped"
+  fi
+done
 step "PASSED; screenshots in $out"

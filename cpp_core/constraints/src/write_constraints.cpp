@@ -18,8 +18,16 @@ using OrderedJson = nlohmann::ordered_json;
 // The document's JSON text; ConstraintError for groups whose shapes do not match or targets that
 // are not finite (what the format's checks cannot see once the numbers are written).
 std::string document_text(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
-                          const std::vector<GroupPositions>& groups, const std::string& frame_name) {
+                          const std::vector<GroupPositions>& groups, const std::string& frame_name,
+                          const WrittenSettings& settings) {
   OrderedJson document = {{"format", "meshik-constraints"}, {"version", 1}, {"rest", rest}, {"examples", examples}};
+  if (settings.feature_space) document["feature_space"] = *settings.feature_space;
+  if (settings.weight_regularization) {
+    if (!std::isfinite(*settings.weight_regularization))
+      throw ConstraintError(path + ": weight_regularization: expected a finite number >= 0");
+    document["weight_regularization"] = *settings.weight_regularization;
+  }
+  if (settings.max_iterations) document["max_iterations"] = *settings.max_iterations;
   OrderedJson handles = OrderedJson::object(), targets = OrderedJson::object();
   for (const GroupPositions& group : groups) {
     const std::string where = path + ": handle group \"" + group.name + "\": ";
@@ -47,10 +55,11 @@ std::string document_text(const std::string& path, const std::string& rest, cons
 }  // namespace
 
 void write_constraint_file(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
-                           const std::vector<GroupPositions>& groups, const std::string& frame_name) {
+                           const std::vector<GroupPositions>& groups, const std::string& frame_name,
+                           const WrittenSettings& settings) {
   std::string text;
   try {
-    text = document_text(path, rest, examples, groups, frame_name);
+    text = document_text(path, rest, examples, groups, frame_name, settings);
   } catch (const nlohmann::json::exception& error) {  // a name that is not UTF-8
     throw ConstraintError(path + ": cannot write the constraint file: " + error.what());
   }

@@ -136,12 +136,22 @@ struct GroupPositions {
   std::vector<double> targets;         // #group by 3 row-major target positions
 };
 
+// The optional solver settings of a written file; members left empty are not written (readers
+// then use the format's defaults).
+struct WrittenSettings {
+  std::optional<std::string> feature_space;       // "nonlinear" or "linear"
+  std::optional<double> weight_regularization;    // k >= 0
+  std::optional<std::int64_t> max_iterations;     // >= 1
+};
+
 // Writes a constraint file with one frame named `frame_name` that sets every group's targets:
-// "rest" and "examples" are written as given (names relative to the file's folder, or absolute).
-// The text is checked by parse_constraints before it replaces `path` (written to a temporary file
-// in the same folder, then renamed). Throws ConstraintError naming `path` for bad content (no
-// group, a duplicate vertex, non-finite targets, a bad frame name, ...) or a failed write.
+// "rest" and "examples" are written as given (names relative to the file's folder, or absolute),
+// then the members of `settings` that are set. The text is checked by parse_constraints before it
+// replaces `path` (written to a temporary file in the same folder, then renamed). Throws
+// ConstraintError naming `path` for bad content (no group, a duplicate vertex, non-finite targets,
+// a bad frame name or setting, ...) or a failed write.
 void write_constraint_file(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
-                           const std::vector<GroupPositions>& groups, const std::string& frame_name = "0001");
+                           const std::vector<GroupPositions>& groups, const std::string& frame_name = "0001",
+                           const WrittenSettings& settings = {});
 
 }  // namespace meshik::constraints

@@ -1,0 +1,109 @@
+// Solves poses on a thread of its own while the GUI thread goes on handling the mouse.
+//
+// The GUI thread posts one request per mouse move. A request posted while another waits replaces
+// it (coalescing: only the newest targets matter), so a slow solve never builds a queue; the
+// worker always ends on the newest targets. A new handle set refactors (a new Solver); a move
+// only solves, warm-started from the previous pose's weights. A quick request (a move during a
+// drag) takes one Gauss-Newton step from there, which the warm start makes nearly the whole way
+// (the full solve's second step typically only confirms convergence); a full request (the end of
+// a drag) iterates to convergence. Quick and full requests use two solvers (each factors once per
+// handle set), since the iteration limit is a solver option. Finished poses are handed back
+// through take() on the GUI thread, which alone writes the mesh; `notify` (called on the
+// worker's thread) tells it there is one.
+#pragma once
+
+#include <meshik/meshik.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace meshik::edit {
+
+using Clock = std::chrono::steady_clock;
+
+struct SolveRequest {
+  std::vector<int> handles;     // #H vertex indices
+  std::vector<double> targets;  // #H by 3 row-major targets, in the order of handles
+  bool cold_start = false;      // forget the warm-start weights first (after "Reset pose")
+  bool quick = false;           // one Gauss-Newton step (during a drag) instead of convergence
+  int moves = 1;                // mouse moves folded into this request
+  Clock::time_point first_event = Clock::now();  // when the oldest of them happened
+};
+
+struct SolveOutcome {
+  SolveRequest request;       // what was solved (moves and first_event include coalesced ones)
+  SolveResult result;         // the pose (empty vertices when `error` is set)
+  std::string error;          // why the solve failed (a handle set the core refuses, ...)
+  bool refactored = false;    // a new handle set: the solver was factored for this request
+  double factor_ms = 0.0;     // time spent factoring (0 when not refactored)
+  double solve_ms = 0.0;      // time spent in Solver::solve
+  Clock::time_point finished;  // when the worker finished it
+  std::uint64_t number = 0;   // 1 for the worker's first solve, 2 for the next, ...
+};
+
+class SolveWorker {
+ public:
+  // examples: the example set every pose is solved in; options: the solver options;
+  // notify: called on the worker's thread after each finished request (may be empty).
+  SolveWorker(std::shared_ptr<const ExampleSet> examples, SolverOptions options, std::function<void()> notify);
+  // Waits for the running solve, drops a waiting request, stops the thread.
+  ~SolveWorker();
+  SolveWorker(const SolveWorker&) = delete;
+  SolveWorker& operator=(const SolveWorker&) = delete;
+
+  // Queues `request`, replacing (and folding in) a request that waits and has not started.
+  void post(SolveRequest request);
+
+  // The newest finished outcome not taken yet, or none. An outcome that finished while an older
+  // one still waited replaces it (counted in Counts::superseded: the GUI was busy drawing).
+  std::optional<SolveOutcome> take();
+
+  // Blocks until no request waits or runs (for tests and for saving a finished pose).
+  void waitIdle();
+
+  // Mouse moves posted, requests solved, requests replaced by a newer one before they started,
+  // finished outcomes replaced by a newer one before they were taken.
+  struct Counts {
+    int moves = 0;
+    int solves = 0;
+    int coalesced = 0;
+    int superseded = 0;
+  };
+  Counts counts() const;
+
+ private:
+  void run();
+  SolveOutcome solve(const SolveRequest& request);
+  // The solver for the request's handle set and kind (quick or full), factored when it is new.
+  const Solver& solverFor(const SolveRequest& request, SolveOutcome& outcome);
+
+  const std::shared_ptr<const ExampleSet> examples_;
+  const SolverOptions options_;
+  const std::function<void()> notify_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable idle_;
+  std::optional<SolveRequest> pending_;
+  std::optional<SolveOutcome> finished_;
+  bool running_ = false;
+  bool stop_ = false;
+  Counts counts_;
+
+  // Touched only by the worker thread.
+  std::shared_ptr<const Solver> full_solver_;
+  std::shared_ptr<const Solver> quick_solver_;
+  std::vector<double> warm_weights_;
+
+  std::thread thread_;  // last: starts after everything above is ready
+};
+
+}  // namespace meshik::edit

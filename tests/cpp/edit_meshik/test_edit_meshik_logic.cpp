@@ -1,0 +1,297 @@
+// The GL-free logic of the MeshLab tool "MeshIK: Drag to Pose" (plugin/edit_meshik/logic):
+// projection and picking on a known view, the view-plane drag, the coalescing solve worker
+// (with the real solver), the constraint-file writer's checks and latency statistics.
+#include "constraint_frame_writer.h"
+#include "meshik/constraints/constraint_file.h"
+#include "latency_stats.h"
+#include "screen_projection.h"
+#include "solve_worker.h"
+#include "test_meshik_support.h"
+#include "vertex_picking.h"
+#include "view_plane_drag.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+namespace {
+
+using meshik::edit::ScreenProjection;
+using meshik::edit::WindowPoint;
+
+// A perspective view as MeshLab sets one up: the camera at (0, 0, 5) looking down -z with a
+// 60 degree vertical field of view, near 0.1, far 100, onto an 800 by 600 viewport.
+ScreenProjection cameraOnZAxis() {
+  const double fov = 60.0 * M_PI / 180.0, aspect = 800.0 / 600.0, near = 0.1, far = 100.0;
+  const double f = 1.0 / std::tan(fov / 2.0);
+  const double projection[16] = {f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1,
+                                 0, 0, 2 * far * near / (near - far), 0};
+  const double modelview[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -5, 1};  // translate by -5 in z
+  const int viewport[4] = {0, 0, 800, 600};
+  return ScreenProjection(projection, modelview, viewport);
+}
+
+TEST(ScreenProjection, ProjectsTheViewCentreToTheViewportCentreAndUnprojectsBack) {
+  const ScreenProjection view = cameraOnZAxis();
+  const double origin[3] = {0, 0, 0};
+  const WindowPoint w = view.project(origin);
+  EXPECT_NEAR(w.x, 400.0, 1e-9);
+  EXPECT_NEAR(w.y, 300.0, 1e-9);
+  EXPECT_GT(w.depth, 0.0);
+  EXPECT_LT(w.depth, 1.0);
+  const double p[3] = {0.7, -0.4, 1.3};
+  double back[3];
+  ASSERT_TRUE(view.unproject(view.project(p), back));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], p[k], 1e-9);
+  // Nearer points look bigger: x = 1 at z = 1 lands further right than at z = -1.
+  const double near_point[3] = {1, 0, 1}, far_point[3] = {1, 0, -1};
+  EXPECT_GT(view.project(near_point).x, view.project(far_point).x);
+}
+
+// Two vertices on one line of sight (the front one at z = 1, the back one at z = -1) and a third
+// off to the side: the click over both means the one whose surface the depth buffer shows.
+TEST(VertexPicking, TakesTheVertexOnTheVisibleSurfaceNotTheOneBehindIt) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> vertices = {0, 0, -1, 0, 0, 1, 1, 1, 0};
+  const WindowPoint front = view.project(&vertices[3]), back = view.project(&vertices[0]);
+  EXPECT_EQ(meshik::edit::pickVertex(view, vertices, front.x + 2, front.y - 1, front.depth, 6.0), 1);
+  // With the front vertex's surface gone, the depth buffer reads the back one's depth.
+  EXPECT_EQ(meshik::edit::pickVertex(view, vertices, back.x, back.y, back.depth, 6.0), 0);
+  EXPECT_EQ(meshik::edit::pickVertex(view, vertices, front.x, front.y, 1.0, 6.0), -1) << "background";
+  EXPECT_EQ(meshik::edit::pickVertex(view, vertices, front.x + 40, front.y, front.depth, 6.0), -1)
+      << "no vertex within the radius";
+  const WindowPoint side = view.project(&vertices[6]);
+  EXPECT_EQ(meshik::edit::pickVertex(view, vertices, side.x - 3, side.y, side.depth, 6.0), 2);
+}
+
+TEST(VertexPicking, PicksTheHandleMarkerNearestTheClick) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> handles = {0, 0, 0, 0.05, 0, 0, 2, 0, 0};
+  const WindowPoint second = view.project(&handles[3]);
+  EXPECT_EQ(meshik::edit::pickHandle(view, handles, second.x + 1, second.y, 8.0), 1);
+  const WindowPoint third = view.project(&handles[6]);
+  EXPECT_EQ(meshik::edit::pickHandle(view, handles, third.x, third.y + 7, 8.0), 2);
+  EXPECT_EQ(meshik::edit::pickHandle(view, handles, third.x, third.y + 20, 8.0), -1);
+}
+
+TEST(ViewPlaneDrag, TheGrabbedTargetFollowsTheCursorAtItsDepthAndTheGroupMovesAlong) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> targets = {0.5, 0.2, 1.0, -1, 0, 0, 0, 1, -2};
+  const WindowPoint grabbed = view.project(&targets[0]);
+  // Pressed 3 pixels beside the marker: nothing jumps at the press point.
+  const meshik::edit::ViewPlaneDrag drag(view, targets, 0, {1}, grabbed.x + 3, grabbed.y - 2);
+  const std::vector<double> unmoved = drag.targetsAt(grabbed.x + 3, grabbed.y - 2);
+  for (size_t i = 0; i < targets.size(); ++i) EXPECT_NEAR(unmoved[i], targets[i], 1e-9);
+
+  const std::vector<double> moved = drag.targetsAt(grabbed.x + 3 + 120, grabbed.y - 2 + 45);
+  const WindowPoint now = view.project(&moved[0]);
+  EXPECT_NEAR(now.x, grabbed.x + 120, 1e-6);
+  EXPECT_NEAR(now.y, grabbed.y + 45, 1e-6);
+  EXPECT_NEAR(now.depth, grabbed.depth, 1e-12);
+  // In the view plane: the camera looks down z, so z stays.
+  EXPECT_NEAR(moved[2], targets[2], 1e-9);
+  EXPECT_GT(moved[0], targets[0]);
+  EXPECT_GT(moved[1], targets[1]);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(moved[3 + k] - targets[3 + k], moved[k] - targets[k], 1e-9) << k;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(moved[6 + k], targets[6 + k]) << "not in the group";
+}
+
+// The tube of the solver's tests, and a request moving its two end caps' centres.
+struct TubeScene {
+  meshik_test::ExampleMeshes meshes = meshik_test::make_tube_examples();
+  std::shared_ptr<const meshik::ExampleSet> examples =
+      std::make_shared<const meshik::ExampleSet>(meshes.view(), meshes.example_pointers());
+  std::vector<int> handles = {meshes.num_vertices() - 2, meshes.num_vertices() - 1};
+
+  meshik::edit::SolveRequest request(double lift) const {
+    meshik::edit::SolveRequest r;
+    r.handles = handles;
+    for (int v : handles)
+      for (int k = 0; k < 3; ++k) r.targets.push_back(meshes.rest[3 * v + k] + (k == 1 ? lift * v / 100.0 : 0.0));
+    return r;
+  }
+};
+
+TEST(SolveWorker, MovesPostedDuringASolveCoalesceIntoOneRequestWithTheNewestTargets) {
+  TubeScene scene;
+  std::mutex mutex;
+  std::condition_variable changed;
+  int finished = 0;
+  bool release = false;
+  // The worker calls this after each solve; holding it keeps the worker busy while we post.
+  meshik::edit::SolveWorker worker(scene.examples, {}, [&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    ++finished;
+    changed.notify_all();
+    changed.wait(lock, [&] { return release || finished > 1; });
+  });
+  worker.post(scene.request(0.1));
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    changed.wait(lock, [&] { return finished == 1; });
+  }
+  const auto first_event = meshik::edit::Clock::now();
+  std::vector<double> newest;
+  for (int i = 1; i <= 10; ++i) {
+    meshik::edit::SolveRequest r = scene.request(0.1 + 0.05 * i);
+    r.first_event = first_event + std::chrono::milliseconds(i);
+    r.quick = i != 4;  // one full request among quick ones makes the folded request full
+    newest = r.targets;
+    worker.post(std::move(r));
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    release = true;
+  }
+  changed.notify_all();
+  worker.waitIdle();
+  const auto counts = worker.counts();
+  EXPECT_EQ(counts.moves, 11);
+  EXPECT_EQ(counts.solves, 2);
+  EXPECT_EQ(counts.coalesced, 9);
+  EXPECT_EQ(counts.superseded, 1) << "the first outcome was never taken";
+  const auto outcome = worker.take();
+  ASSERT_TRUE(outcome.has_value());
+  EXPECT_EQ(outcome->number, 2u);
+  EXPECT_EQ(outcome->request.moves, 10);
+  EXPECT_TRUE(outcome->request.first_event == first_event + std::chrono::milliseconds(1));
+  EXPECT_EQ(outcome->request.targets, newest) << "the newest targets";
+  EXPECT_FALSE(outcome->request.quick);
+  EXPECT_FALSE(outcome->refactored) << "a move never refactors";
+  EXPECT_TRUE(outcome->error.empty()) << outcome->error;
+  EXPECT_FALSE(worker.take().has_value()) << "the older outcome was dropped, the newest taken";
+}
+
+TEST(SolveWorker, ANewHandleSetRefactorsAndTheSolveMatchesTheSolverWarmStarted) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {});
+  worker.post(scene.request(0.3));
+  worker.waitIdle();
+  const auto first = worker.take();
+  ASSERT_TRUE(first && first->error.empty()) << (first ? first->error : "none");
+  EXPECT_TRUE(first->refactored);
+
+  worker.post(scene.request(0.5));
+  worker.waitIdle();
+  const auto second = worker.take();
+  ASSERT_TRUE(second && second->error.empty());
+  EXPECT_FALSE(second->refactored);
+  const meshik::Solver solver(scene.examples, scene.handles);
+  const auto targets = scene.request(0.5).targets;
+  const meshik::SolveResult expected = solver.solve(targets.data(), first->result.weights.data());
+  EXPECT_EQ(second->result.vertices, expected.vertices) << "warm-started from the previous pose";
+
+  meshik::edit::SolveRequest more = scene.request(0.5);
+  more.handles.push_back(0);
+  more.targets.insert(more.targets.end(), scene.meshes.rest.begin(), scene.meshes.rest.begin() + 3);
+  worker.post(more);
+  worker.waitIdle();
+  const auto third = worker.take();
+  ASSERT_TRUE(third && third->error.empty());
+  EXPECT_TRUE(third->refactored);
+  EXPECT_NEAR(third->result.vertices[0], scene.meshes.rest[0], 1e-9) << "the new handle holds";
+}
+
+TEST(SolveWorker, QuickRequestsTakeOneStepAndAFullOneConvergesFromThere) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {});
+  meshik::edit::SolveRequest quick = scene.request(0.4);
+  quick.quick = true;
+  worker.post(quick);
+  worker.waitIdle();
+  const auto stepped = worker.take();
+  ASSERT_TRUE(stepped && stepped->error.empty());
+  EXPECT_EQ(stepped->result.iterations, 1);
+  EXPECT_TRUE(stepped->refactored);
+
+  worker.post(scene.request(0.4));
+  worker.waitIdle();
+  const auto full = worker.take();
+  ASSERT_TRUE(full && full->error.empty());
+  EXPECT_TRUE(full->refactored) << "the full solver is a second one";
+  EXPECT_TRUE(full->result.converged);
+  const meshik::Solver solver(scene.examples, scene.handles);
+  const auto targets = scene.request(0.4).targets;
+  EXPECT_EQ(full->result.vertices, solver.solve(targets.data(), stepped->result.weights.data()).vertices);
+}
+
+TEST(SolveWorker, ASolveTheCoreRefusesComesBackAsAnErrorAndTheWorkerGoesOn) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {});
+  meshik::edit::SolveRequest none;
+  worker.post(none);
+  worker.waitIdle();
+  const auto refused = worker.take();
+  ASSERT_TRUE(refused.has_value());
+  EXPECT_NE(refused->error.find("handle"), std::string::npos) << refused->error;
+  EXPECT_TRUE(refused->result.vertices.empty());
+  worker.post(scene.request(0.2));
+  worker.waitIdle();
+  const auto fine = worker.take();
+  ASSERT_TRUE(fine.has_value());
+  EXPECT_TRUE(fine->error.empty()) << fine->error;
+  EXPECT_EQ(fine->result.vertices.size(), scene.meshes.rest.size());
+}
+
+meshik::edit::DragFrame someFrame() {
+  meshik::edit::DragFrame frame;
+  frame.rest_path = "/data/rest \"quoted\".obj";
+  frame.example_paths = {"/data/a.obj", "/data/b.obj"};
+  frame.handles = {4, 9};
+  frame.targets = {0.1, 0.2, 1.0 / 3.0, -5, 6, 7};
+  return frame;
+}
+
+TEST(ConstraintFrameWriter, RefusesANonFiniteTargetNamingTheHandleAndWritesNothing) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "meshik_edit_writer_test";
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::string path = (folder / "drag.json").string();
+  meshik::edit::DragFrame frame = someFrame();
+  frame.targets[4] = std::nan("");
+  try {
+    meshik::edit::writeConstraintFrame(path, frame);
+    FAIL() << "no error";
+  } catch (const meshik::edit::ConstraintWriteError& error) {
+    EXPECT_NE(std::string(error.what()).find("vertex 9 is not finite"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("drag.json"), std::string::npos) << error.what();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(folder));
+
+  frame = someFrame();
+  frame.handles = {4, 4};
+  EXPECT_THROW(meshik::edit::writeConstraintFrame(path, frame), meshik::edit::ConstraintWriteError);
+  frame = someFrame();
+  frame.rest_path.clear();
+  EXPECT_THROW(meshik::edit::writeConstraintFrame(path, frame), meshik::edit::ConstraintWriteError);
+
+  const meshik::edit::DragFrame saved = someFrame();
+  meshik::edit::writeConstraintFrame(path, saved);
+  const meshik::constraints::ConstraintDocument document = meshik::constraints::read_constraint_file(path);
+  EXPECT_EQ(document.rest, saved.rest_path);
+  EXPECT_EQ(document.examples, saved.example_paths);
+  EXPECT_EQ(document.feature_space, std::optional<std::string>("nonlinear"));
+  EXPECT_EQ(document.max_iterations, std::optional<std::int64_t>(saved.max_iterations));
+  ASSERT_EQ(document.frames.size(), 1u);
+  ASSERT_EQ(document.frames[0].targets.size(), 1u);
+  EXPECT_EQ(document.frames[0].targets[0].positions, saved.targets) << "every target reads back exactly";
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()), 1)
+      << "no temporary file left";
+  std::filesystem::remove_all(folder);
+}
+
+TEST(LatencyStats, MedianAndMax) {
+  meshik::edit::LatencyStats stats;
+  EXPECT_EQ(stats.median(), 0.0);
+  for (double ms : {5.0, 1.0, 9.0, 3.0}) stats.add(ms);
+  EXPECT_EQ(stats.median(), 4.0);
+  EXPECT_EQ(stats.max(), 9.0);
+  stats.add(2.0);
+  EXPECT_EQ(stats.median(), 3.0);
+}
+
+}  // namespace
