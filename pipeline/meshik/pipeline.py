@@ -96,7 +96,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
                          posed, fit, grid, clock.laps)
-        report = staged.commit(report)
+        report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
     return dict(report, skipped=False)

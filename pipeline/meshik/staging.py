@@ -4,15 +4,22 @@ A job writes its files into a hidden staging folder inside the destination; comm
 each file to its final name (an atomic rename on one file system) and writes report.json last,
 so a finished report means every file it lists is complete. An interrupted job leaves only the
 hidden staging folder, which the next run in that destination removes.
+
+A run removes an earlier output only when it can prove that it wrote it: the earlier report must
+list the file inside the destination with the SHA-256 of the bytes written then, the file on disk
+must still have exactly those bytes, and it must not be one of this run's inputs. A report.json
+written by hand or by another tool therefore never deletes anything.
 """
+import hashlib
 import json
 import os
 import shutil
 import uuid
 from pathlib import Path
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Iterable, Optional
 
 from meshik.errors import OutputError
+from meshik.safe_paths import inside
 
 REPORT_NAME = "report.json"
 _STAGING_PREFIX = ".meshik-partial-"
@@ -74,39 +81,49 @@ class StagedOutput:
         except OSError as error:
             raise OutputError(f"{self.destination}: cannot create the output folder: {error.strerror or error}") from None
         self.files: Dict[str, int] = {}
+        self.digests: Dict[str, str] = {}
 
     def write(self, relative: str, data: bytes) -> None:
-        """Write the output file `relative` (e.g. "frames/0001.drc") into the staging folder."""
+        """Write the output file `relative` (e.g. "frames/0001.drc") into the staging folder.
+
+        OutputError when `relative` is not a path inside the destination (e.g. a frame named '..').
+        """
         path = self.path(relative)
         path.write_bytes(data)
         self.files[relative] = len(data)
+        self.digests[relative] = hashlib.sha256(data).hexdigest()
 
     def path(self, relative: str) -> Path:
         """Staging path for an output written by another library; call added(relative) once written."""
-        path = self.staging / relative
+        inside(self.destination, relative, "output file")
+        path = inside(self.staging, relative, "output file")
         path.parent.mkdir(parents=True, exist_ok=True)
         return path
 
     def added(self, relative: str) -> None:
         """Record a file written at path(relative) by other means."""
-        self.files[relative] = (self.staging / relative).stat().st_size
+        path = self.staging / relative
+        self.files[relative] = path.stat().st_size
+        self.digests[relative] = _file_sha256(path)
 
-    def commit(self, report: Dict[str, Any]) -> Dict[str, Any]:
-        """Move every file into place, then write report.json (with "outputs": name -> bytes) last.
+    def commit(self, report: Dict[str, Any], inputs: Iterable = ()) -> Dict[str, Any]:
+        """Move every file into place, then write report.json last, with "outputs" (name -> bytes)
+        and "output_sha256" (name -> SHA-256 of its bytes).
 
-        Files listed by a previous report in this destination but not produced now are removed.
-        Returns the report as written.
+        An output of the previous report that is not produced now is removed only when it provably
+        came from an earlier run (see the module's note); `inputs` are this run's input files, never
+        removed. Returns the report as written.
         """
         previous = read_report(self.destination) or {}
-        report = dict(report, outputs=dict(sorted(self.files.items())))
+        report = dict(report, outputs=dict(sorted(self.files.items())),
+                      output_sha256=dict(sorted(self.digests.items())))
         try:
             for relative in self.files:
                 target = self.destination / relative
                 target.parent.mkdir(parents=True, exist_ok=True)
                 os.replace(self.staging / relative, target)
-            for relative in (previous.get("outputs") or {}):
-                if relative not in self.files and _inside(self.destination, relative):
-                    (self.destination / relative).unlink(missing_ok=True)
+            for stale in _provably_written(self.destination, previous, set(self.files), inputs):
+                stale.unlink()
             staged_report = self.staging / REPORT_NAME
             staged_report.write_text(json.dumps(report, indent=1))
             os.replace(staged_report, self.destination / REPORT_NAME)
@@ -125,13 +142,48 @@ class StagedOutput:
             self.destination.rmdir()
 
 
-def _inside(folder: Path, relative: str) -> bool:
-    """Whether `relative` names a path inside `folder` (guards against '..' in a tampered report)."""
+def _provably_written(destination: Path, previous: Dict[str, Any], kept: set, inputs: Iterable) -> Iterable[Path]:
+    """Files of the `previous` report that are not `kept` and that an earlier run provably wrote.
+
+    A file qualifies when it is listed under "output_sha256" with a name inside `destination`,
+    is a regular file (not a link) whose bytes still hash to the listed digest, and is none of
+    `inputs` (paths of this run's input files). Anything else in a report is ignored.
+    """
+    digests = previous.get("output_sha256")
+    if not isinstance(digests, dict):
+        return []
+    input_ids = {_file_id(Path(p)) for p in inputs} - {None}
+    stale = []
+    for relative, digest in digests.items():
+        if relative in kept or not isinstance(relative, str) or not isinstance(digest, str):
+            continue
+        try:
+            path = inside(destination, relative, "output file")
+        except OutputError:
+            continue
+        if path.is_symlink() or not path.is_file() or _file_id(path) in input_ids:
+            continue
+        if _file_sha256(path) == digest:
+            stale.append(path)
+    return stale
+
+
+def _file_id(path: Path):
+    """(device, inode) of an existing file, or None."""
     try:
-        (folder / relative).resolve().relative_to(folder.resolve())
-        return True
-    except (ValueError, OSError):
-        return False
+        status = path.stat()
+    except OSError:
+        return None
+    return status.st_dev, status.st_ino
+
+
+def _file_sha256(path: Path) -> str:
+    """SHA-256 (hex) of a file's bytes, read in 1 MiB blocks."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as stream:
+        for block in iter(lambda: stream.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
 
 
 def _remove_abandoned_staging(destination: Path) -> None:
