@@ -11,6 +11,7 @@ from typing import List, Sequence, Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
+from meshik.isolated_load import check_input_file, isolated_load
 
 # Attributes MeshLab would add to a saved file that a posed mesh does not have; each one is
 # dropped from the request when the format has no such parameter.
@@ -38,22 +39,13 @@ class ExampleMeshes:
 def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
     """(#V by 3 float64 positions, #F by 3 int64 triangles) of a mesh file. Raises MeshFileError.
 
-    MeshLab's readers drop vertices with non-finite coordinates (and their triangles) while loading.
+    The file is read by MeshLab's readers in a forked child process (see isolated_load), since some
+    of them crash on malformed files (an OBJ or OFF face index out of range). MeshLab's readers drop
+    vertices with non-finite coordinates (and their triangles) while loading.
     """
-    import pymeshlab
-
     path = Path(path)
-    if not path.is_file():
-        raise MeshFileError(f"{path}: mesh file not found")
-    meshes = pymeshlab.MeshSet()
-    try:
-        meshes.load_new_mesh(str(path))
-    except pymeshlab.PyMeshLabException as error:
-        detail = " ".join(str(error).split())
-        raise MeshFileError(f"{path}: cannot read the mesh: {detail}") from None
-    mesh = meshes.current_mesh()
-    vertices = np.array(mesh.vertex_matrix(), dtype=np.float64)
-    faces = np.array(mesh.face_matrix(), dtype=np.int64).reshape(-1, 3)
+    check_input_file(path, "mesh file")
+    vertices, faces = isolated_load(path)
     if len(faces) == 0:
         raise MeshFileError(f"{path}: the mesh has no triangles")
     return vertices, faces
