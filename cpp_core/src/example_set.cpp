@@ -1,5 +1,6 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "example_set_impl.h"
@@ -153,6 +154,9 @@ std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace featur
     if (c < 0) continue;
     for (int d = 0; d < 3; ++d) pose.vertices[3 * static_cast<size_t>(v) + d] += shift[3 * c + d];
   }
+  for (double x : pose.vertices)
+    if (!std::isfinite(x))
+      throw InputError("the blend leaves the finite range of double precision: the weights are too large for this mesh");
   return impl.to_user(pose.vertices);
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <Eigen/Core>
@@ -117,6 +118,24 @@ void validate_targets(const double* targets, const std::vector<int>& handles) {
     if (!finite3(targets + 3 * h))
       throw InputError("target " + std::to_string(h) + " (handle vertex " +
                        std::to_string(handles[h]) + ") has a non-finite coordinate");
+}
+
+void validate_pose_finite(const SolveResult& result, const double* targets, const std::vector<int>& handles) {
+  const auto finite = [](const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (finite(result.vertices) && finite(result.weights) && std::isfinite(result.residual)) return;
+  size_t farthest = 0;
+  double largest = -1.0;
+  for (size_t h = 0; h < handles.size(); ++h)
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(targets[3 * h + k]) > largest) largest = std::abs(targets[3 * h + k]), farthest = h;
+  std::ostringstream target;
+  target.precision(3);
+  target << "(" << targets[3 * farthest] << ", " << targets[3 * farthest + 1] << ", " << targets[3 * farthest + 2] << ")";
+  throw InputError("the pose leaves the finite range of double precision: target " + std::to_string(farthest) +
+                   " (handle vertex " + std::to_string(handles[farthest]) + ") at " + target.str() +
+                   " is too far out for this mesh");
 }
 
 }  // namespace meshik

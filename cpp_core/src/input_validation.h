@@ -30,4 +30,9 @@ void validate_finite(const double* values, int count, const char* what);
 // targets: #H by 3 row-major finite positions of the handles.
 void validate_targets(const double* targets, const std::vector<int>& handles);
 
+// Throws InputError unless the pose of a solve is finite: result.vertices (#V by 3), its weights
+// and its residual. The message names the handle whose target lies farthest out (targets: #H by 3,
+// handles: #H vertex indices), the likely cause: targets so large that the solve overflows.
+void validate_pose_finite(const SolveResult& result, const double* targets, const std::vector<int>& handles);
+
 }  // namespace meshik

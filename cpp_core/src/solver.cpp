@@ -91,6 +91,7 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   SolveResult result =
       gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, options, progress);
   result.vertices = set.to_user(result.vertices);
+  validate_pose_finite(result, targets, impl_->handles);
   for (int& j : result.inverted_triangles) j = set.triangle_of_internal[j];
   std::sort(result.inverted_triangles.begin(), result.inverted_triangles.end());
   return result;

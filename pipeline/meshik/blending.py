@@ -35,7 +35,10 @@ def blend_to_file(inputs: Sequence, weights: Sequence[float], out, feature_space
         raise PipelineError(f"{len(weights)} weights given for {len(examples)} examples: give one weight per example")
     meshes = load_example_set(rest, examples)
     example_set = meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples))
-    vertices = np.asarray(example_set.blend(np.asarray(weights, dtype=float), feature_space=feature_space or "nonlinear"))
+    try:
+        vertices = np.asarray(example_set.blend(np.asarray(weights, dtype=float), feature_space=feature_space or "nonlinear"))
+    except meshik.InputError as error:
+        raise PipelineError(f"weights {', '.join(map(str, weights))}: {error}") from None
     out = Path(out)
     check_writable(out.parent)
     if out.suffix.lower() == ".drc":

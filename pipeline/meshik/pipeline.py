@@ -82,12 +82,16 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
 
     progress = Progress(f"{name}: posing", len(resolved.frame_names), quiet=quiet, stream=stream)
     posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options,
-                           on_frame=progress.advance, context=str(constraint_set.rest))
+                           on_frame=progress.advance, context=str(constraints_path),
+                           frame_names=resolved.frame_names)
     progress.finish(f"{posed.solve_seconds.sum():.2f} s")
     clock.lap("pose")
 
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     grid = animation_grid(np.concatenate([posed.vertices, posed_meshes.rest[None]]), quantization_bits)
+    if {"drc", "glb"} & set(formats):
+        _check_grid_resolution(constraints_path, grid, posed_meshes.rest, posed.vertices, resolved.frame_names,
+                               resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept])
     writing = Progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
     with StagedOutput(out_dir) as staged:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
@@ -184,6 +188,30 @@ def _handle_fit(posed_vertices: np.ndarray, simplified: Optional[SimplifiedMeshe
     """#frames by #H distances from each original handle's target to the posed vertex it maps to."""
     rows = simplified.vertex_map[handles] if simplified is not None else handles
     return np.linalg.norm(posed_vertices[:, rows] - targets, axis=2)
+
+
+# The coarsest shared quantisation step accepted, as a fraction of the rest mesh's bounding-box
+# diagonal: beyond it, one far-off frame would blur every frame of the animation.
+MAX_GRID_STEP = 0.01
+
+
+def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
+                           handles: np.ndarray, handle_rest: np.ndarray, targets: np.ndarray) -> None:
+    """PipelineError unless the animation's shared grid resolves the mesh (step <= MAX_GRID_STEP of
+    the rest diagonal). rest: #V by 3; frames: #frames by #V by 3; handles: #H vertex ids (as the
+    user numbers them); handle_rest: #H by 3 their rest positions; targets: #frames by #H by 3. The message names the frame reaching farthest from the rest mesh and
+    its handle whose target lies farthest from that handle's rest position.
+    """
+    diagonal = float(np.linalg.norm(rest.max(axis=0) - rest.min(axis=0))) or 1.0
+    if grid.step <= MAX_GRID_STEP * diagonal:
+        return
+    centre = (rest.max(axis=0) + rest.min(axis=0)) / 2
+    frame = int(np.argmax(np.abs(frames - centre).reshape(len(frames), -1).max(axis=1)))
+    handle = int(np.argmax(np.linalg.norm(targets[frame] - handle_rest, axis=1))) if len(handles) else 0
+    where = f"frame {frame_names[frame]}, handle vertex {int(handles[handle])}" if len(handles) else f"frame {frame_names[frame]}"
+    raise PipelineError(f"{source}: {where}: the animation spans {grid.range / diagonal:.3g} times the rest mesh's size, "
+                        f"so its shared {grid.bits}-bit grid would blur every frame by {grid.step / diagonal:.2g} of the "
+                        "mesh's diagonal: move that frame's targets closer or raise --quantization-bits")
 
 
 def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved, posed: PosedAnimation,

@@ -1,7 +1,7 @@
 """Pose every frame of an animation with the core: one factorisation, warm-started weights."""
 import time
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Sequence
 
 import numpy as np
 
@@ -28,14 +28,17 @@ class PosedAnimation:
 
 
 def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarray, solver_options: Dict[str, Any],
-                   on_frame: Optional[Callable[[], None]] = None, context: str = "") -> PosedAnimation:
+                   on_frame: Optional[Callable[[], None]] = None, context: str = "",
+                   frame_names: Optional[Sequence[str]] = None) -> PosedAnimation:
     """Solve every frame for one handle set: the system is factored once, each frame starts from
     the previous frame's weights.
 
     handles: #H vertex indices; targets: #frames by #H by 3; solver_options: keyword arguments of
     meshik.Solver (feature_space, weight_regularization, max_iterations, tolerance); on_frame: called
-    after each frame; context: prefix for error messages (e.g. the rest mesh's file).
-    Raises PipelineError when the core rejects the input.
+    after each frame; context: prefix for error messages (e.g. the rest mesh's file); frame_names:
+    #frames names for messages (default: the frame's index).
+    Raises PipelineError when the core rejects the input or a frame's pose (e.g. targets so far out
+    that the pose overflows), naming the frame.
     """
     import meshik
 
@@ -55,7 +58,11 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     previous = None
     for k in range(frames):
         start = time.perf_counter()
-        result = solver.solve(targets[k], initial_weights=previous)
+        try:
+            result = solver.solve(targets[k], initial_weights=previous)
+        except meshik.InputError as error:
+            frame = frame_names[k] if frame_names is not None else k
+            raise PipelineError(f"{context}: frame {frame}: {error}" if context else f"frame {frame}: {error}") from None
         seconds[k] = time.perf_counter() - start
         vertices[k], weights[k] = result.vertices, result.weights
         iterations[k], residuals[k], converged[k] = result.iterations, result.residual, result.converged
