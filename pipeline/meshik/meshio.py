@@ -48,6 +48,10 @@ def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
     vertices, faces = isolated_load(path)
     if len(faces) == 0:
         raise MeshFileError(f"{path}: the mesh has no triangles")
+    bad = np.flatnonzero(((faces < 0) | (faces >= len(vertices))).any(axis=1))
+    if len(bad):
+        raise MeshFileError(f"{path}: triangle {bad[0]} has corners {faces[bad[0]].tolist()} but the mesh has "
+                            f"{len(vertices)} vertices")
     return vertices, faces
 
 
