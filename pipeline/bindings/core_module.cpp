@@ -111,16 +111,19 @@ meshik::FeatureSpace parse_feature_space(const std::string& name) {
 }
 
 // Adapts an optional Python callable progress(fraction, stage) -> bool | None to the core's
-// callback. Returning False cancels; an exception raised by the callable cancels the core call
-// and is re-raised by rethrow_if_failed() once the core has returned.
+// callback, and lets Ctrl+C stop a core call: at every progress point the callback also runs
+// Python's pending signal handlers, so SIGINT raises KeyboardInterrupt within one iteration.
+// Returning False cancels; an exception raised by the callable or a signal handler cancels the
+// core call and is re-raised by run() once the core has returned.
 class PythonProgress {
  public:
   explicit PythonProgress(nb::object callable) : callable_(std::move(callable)) {}
   meshik::ProgressCallback callback() {
-    if (callable_.is_none()) return {};
     return [this](double fraction, const std::string& stage) {
       nb::gil_scoped_acquire gil;
       try {
+        if (PyErr_CheckSignals() != 0) throw nb::python_error();
+        if (callable_.is_none()) return true;
         const nb::object answer = callable_(fraction, stage);
         return answer.is_none() || PyObject_IsTrue(answer.ptr()) == 1;
       } catch (nb::python_error&) {

@@ -2,7 +2,9 @@
 file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
 import argparse
 import json
+import signal
 import sys
+import threading
 from pathlib import Path
 from typing import List, Optional
 
@@ -19,14 +21,39 @@ def main(argv: Optional[List[str]] = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exit_request:  # --help (0) or a usage error (2)
         return int(exit_request.code or 0)
+    previous_sigterm = _stop_on_sigterm()
     try:
         return args.run(args)
     except ValueError as error:  # PipelineError and the core's InputError: bad input, the message says why
         print(f"meshik: error: {error}", file=sys.stderr)
         return 1
+    except OSError as error:  # a file system failure outside the checked paths: disk full, I/O error
+        where = f"{error.filename}: " if error.filename else ""
+        print(f"meshik: error: {where}{error.strerror or error}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("meshik: error: out of memory (the input is larger than this machine can hold)", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("meshik: interrupted", file=sys.stderr)
         return 130
+    finally:
+        if previous_sigterm is not None:
+            signal.signal(signal.SIGTERM, previous_sigterm)
+
+
+def _stop_on_sigterm():
+    """Make SIGTERM stop a run as Ctrl+C does (KeyboardInterrupt: partial outputs are removed).
+
+    Returns the previous handler, or None when not on the main thread (handlers cannot be set there).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return None
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    return signal.signal(signal.SIGTERM, interrupt)
 
 
 def _parser() -> argparse.ArgumentParser:
