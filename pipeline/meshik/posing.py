@@ -28,20 +28,23 @@ class PosedAnimation:
 
 
 def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarray, solver_options: Dict[str, Any],
-                   on_frame: Optional[Callable[[], None]] = None, context: str = "") -> PosedAnimation:
+                   on_frame: Optional[Callable[[], None]] = None, context: str = "",
+                   features: Optional[Callable[[], Any]] = None) -> PosedAnimation:
     """Solve every frame for one handle set: the system is factored once, each frame starts from
     the previous frame's weights.
 
     handles: #H vertex indices; targets: #frames by #H by 3; solver_options: keyword arguments of
     meshik.Solver (feature_space, weight_regularization, max_iterations, tolerance); on_frame: called
-    after each frame; context: prefix for error messages (e.g. the rest mesh's file).
+    after each frame; context: prefix for error messages (e.g. the rest mesh's file); features: returns
+    the meshes' meshik.ExampleSet (e.g. kept by an ExampleSetCache); by default it is built here.
     Raises PipelineError when the core rejects the input.
     """
     import meshik
 
     start = time.perf_counter()
     try:
-        example_set = meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples))
+        example_set = features() if features is not None else \
+            meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples))
         solver = meshik.Solver.from_example_set(example_set, np.asarray(handles, dtype=np.int64), **solver_options)
     except meshik.InputError as error:
         raise PipelineError(f"{context}: {error}" if context else str(error)) from None
