@@ -140,8 +140,10 @@ def _run(client, paths: List[Path], names: List[str], out_dir: Path, cache_mb: i
                 outcomes[index] = JobOutcome(name, str(path), "", "failed", f"{path}: {error}")
                 display.job_finished(name, "failed", outcomes[index].reason, 0.0, 0)
                 continue
+            # one task group for all jobs: past twice the cluster's threads the scheduler then queues them
+            # (root-ish tasks), so a worker holds only the job it runs and a dying worker takes no other
             future = client.submit(run_job, str(path.absolute()), str(folder.absolute()), job_options,
-                                   int(cache_mb) << 20, key=f"meshik-{name}-{batch_id}", pure=False)
+                                   int(cache_mb) << 20, key=f"meshik-batch-{batch_id}-{index}", pure=False)
             futures[future] = index
         try:
             _collect(client, futures, paths, names, out_dir, outcomes, display)
@@ -159,39 +161,42 @@ def _run(client, paths: List[Path], names: List[str], out_dir: Path, cache_mb: i
 
 def _collect(client, futures: Dict[Any, int], paths: List[Path], names: List[str], out_dir: Path,
              outcomes: List[Optional[JobOutcome]], display: BatchDisplay) -> None:
-    """Fill outcomes[i] as each future completes, updating the display (running jobs polled twice a second)."""
+    """Fill outcomes[i] as each future completes, updating the display (running jobs polled twice a
+    second). Results are fetched as soon as each job ends, so that a worker dying afterwards
+    (taking the result out of its memory) rarely makes the job run again."""
     from distributed import as_completed
 
-    completed = as_completed(list(futures))
+    completed = as_completed(list(futures), with_results=True, raise_errors=False)
     keys = {future.key for future in futures}
     polled = 0.0
     while not completed.is_empty():
-        for future in completed.next_batch(block=False):
+        for future, result in completed.next_batch(block=False):
             index = futures[future]
-            outcomes[index] = _outcome(future, names[index], paths[index], out_dir / names[index])
+            outcomes[index] = _outcome(future, result, names[index], paths[index], out_dir / names[index])
             o = outcomes[index]
             display.job_finished(o.name, o.status, o.reason, o.seconds, o.frames)
-            keys.discard(future.key)
-            future.release()
+            keys.discard(future.key)  # the future is kept: its task stays in the group the scheduler queues
         if time.monotonic() - polled > _RUNNING_POLL_SECONDS:
             display.set_running(sum(len(keys.intersection(held)) for held in client.processing().values()))
             polled = time.monotonic()
         time.sleep(_POLL_SECONDS)
+    display.set_running(0)
 
 
-def _outcome(future, name: str, path: Path, folder: Path) -> JobOutcome:
-    """The JobOutcome of a completed future: run_job's result, or why the task did not return one."""
+def _outcome(future, result, name: str, path: Path, folder: Path) -> JobOutcome:
+    """The JobOutcome of a completed future: run_job's result (`result`), or why the task did not
+    return one (`result` is then (type, exception, traceback) or the exception)."""
     from distributed import KilledWorker
 
     if future.status == "finished":
-        result = future.result()
         return JobOutcome(name, str(path), str(folder), result["status"], result["reason"], result["seconds"],
                           result["frames"], result["worker"])
-    error = future.exception() if future.status == "error" else None
+    error = result[1] if isinstance(result, tuple) else result if isinstance(result, BaseException) else None
     if isinstance(error, KilledWorker):
         last = getattr(error.last_worker, "address", error.last_worker)
-        reason = (f"{path}: the worker running this job died {error.allowed_failures + 1} times (a crash, the memory "
-                  f"limit or a kill); last on {last}")
+        runs = error.allowed_failures + 1
+        reason = (f"{path}: the worker process died each time it ran this job ({runs} run{'s' if runs > 1 else ''}: "
+                  f"a crash, the memory limit or a kill); the last was {last}")
         return JobOutcome(name, str(path), str(folder), "crashed", reason, worker=str(last))
     reason = f"{path}: {type(error).__name__}: {error}" if error is not None else f"{path}: the cluster lost this job ({future.status})"
     return JobOutcome(name, str(path), str(folder), "failed", reason)

@@ -13,9 +13,13 @@ from typing import Any, Dict, Optional
 
 from meshik.example_cache import ExampleSetCache
 
-# Test-only fault: "JOB,TIMES,MARKER" makes job JOB SIGKILL its own worker process while it runs,
-# TIMES times in all (counted in the file MARKER, which also records the killed process ids).
+# Test-only fault: "JOB,TIMES,MARKER" makes job JOB SIGKILL its own worker process half a second
+# into its run,
+# TIMES times in all (the file MARKER records the ids of the processes killed); several such
+# specifications are separated by ";".
 KILL_WORKER_VARIABLE = "MESHIK_TEST_KILL_WORKER"
+
+_KILL_AFTER_SECONDS = 0.5
 
 _cache: Optional[ExampleSetCache] = None
 
@@ -57,12 +61,11 @@ def example_cache(max_bytes: int) -> Optional[ExampleSetCache]:
 def _maybe_kill_worker(job: str) -> None:
     """The test-only fault of KILL_WORKER_VARIABLE: SIGKILL this process when it names this job and
     has not yet killed as many times as it says."""
-    spec = os.environ.get(KILL_WORKER_VARIABLE)
-    if not spec:
-        return
-    name, times, marker = spec.split(",", 2)
-    marker_path = Path(marker)
-    killed = marker_path.read_text().split() if marker_path.exists() else []
-    if name == job and len(killed) < int(times):
-        marker_path.write_text(" ".join(killed + [str(os.getpid())]))
-        os.kill(os.getpid(), signal.SIGKILL)
+    for spec in filter(None, os.environ.get(KILL_WORKER_VARIABLE, "").split(";")):
+        name, times, marker = spec.split(",", 2)
+        marker_path = Path(marker)
+        killed = marker_path.read_text().split() if marker_path.exists() else []
+        if name == job and len(killed) < int(times):
+            marker_path.write_text(" ".join(killed + [str(os.getpid())]))
+            time.sleep(_KILL_AFTER_SECONDS)  # long after the previous job's result left this worker
+            os.kill(os.getpid(), signal.SIGKILL)
