@@ -32,6 +32,7 @@ from meshik.safe_paths import child_path
 SUMMARY_NAME = "batch-report.json"
 DEFAULT_RETRIES = 2
 DEFAULT_CACHE_MB = 512
+SCHEDULER_TIMEOUT = "30s"
 _POLL_SECONDS = 0.05
 _RUNNING_POLL_SECONDS = 0.5
 
@@ -70,7 +71,7 @@ def batch_client(jobs: Optional[int] = None, memory_limit="auto", scheduler: Opt
     """A Dask Client for a batch, closed (with its cluster) on leaving the block.
 
     scheduler: address of a running scheduler ("tcp://host:8786"); its own settings then decide the
-    retries (distributed.scheduler.allowed-failures). Without it: a LocalCluster of `jobs` worker
+    retries (distributed.scheduler.allowed-failures); PipelineError when it cannot be reached. Without it: a LocalCluster of `jobs` worker
     processes (default: one per core), one thread each, `memory_limit` per worker ("4GB", "auto":
     the machine's memory shared out, 0: none), a job whose worker died retried up to `retries`
     times, scheduler and dashboard listening on 127.0.0.1 only.
@@ -79,7 +80,10 @@ def batch_client(jobs: Optional[int] = None, memory_limit="auto", scheduler: Opt
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
-        client = Client(scheduler, timeout="30s")
+        try:
+            client = Client(scheduler, timeout=SCHEDULER_TIMEOUT)
+        except (OSError, TimeoutError) as error:
+            raise PipelineError(f"cannot reach the Dask scheduler at {scheduler}: {error}") from None
         try:
             yield client
         finally:
@@ -138,24 +142,24 @@ def _run(client, paths: List[Path], names: List[str], out_dir: Path, cache_mb: i
         if "dashboard" in client.scheduler_info().get("services", {}):
             display.note(f"Dask dashboard: {client.dashboard_link}")
         batch_id = uuid.uuid4().hex[:8]
-        for index, (path, name) in enumerate(zip(paths, names)):
-            try:
-                folder = child_path(out_dir, name, "job name")
-            except OutputError as error:
-                outcomes[index] = JobOutcome(name, str(path), "", "failed", f"{path}: {error}")
-                display.job_finished(name, "failed", outcomes[index].reason, 0.0, 0)
-                continue
-            # one task group for all jobs: past twice the cluster's threads the scheduler then queues them
-            # (root-ish tasks), so a worker holds only the job it runs and a dying worker takes no other
-            future = client.submit(run_job, str(path.absolute()), str(folder.absolute()), job_options,
-                                   int(cache_mb) << 20, key=f"meshik-batch-{batch_id}-{index}", pure=False)
-            futures[future] = index
         try:
+            for index, (path, name) in enumerate(zip(paths, names)):
+                try:
+                    folder = child_path(out_dir, name, "job name")
+                except OutputError as error:
+                    outcomes[index] = JobOutcome(name, str(path), "", "failed", f"{path}: {error}")
+                    display.job_finished(name, "failed", outcomes[index].reason, 0.0, 0)
+                    continue
+                # one task group for all jobs: past twice the cluster's threads the scheduler then queues
+                # them (root-ish tasks), so a worker holds only the job it runs and a dying worker takes no other
+                future = client.submit(run_job, str(path.absolute()), str(folder.absolute()), job_options,
+                                       int(cache_mb) << 20, key=f"meshik-batch-{batch_id}-{index}", pure=False)
+                futures[future] = index
             _collect(client, futures, paths, names, out_dir, outcomes, display)
         except KeyboardInterrupt:
             _stop(client, [f for f, i in futures.items() if outcomes[i] is None], restart_on_stop)
-            for future, index in futures.items():
-                if outcomes[index] is None:
+            for index, outcome in enumerate(outcomes):
+                if outcome is None:
                     outcomes[index] = JobOutcome(names[index], str(paths[index]), str(out_dir / names[index]),
                                                  "interrupted", "the batch was interrupted before this job finished")
             _write_summary(out_dir, outcomes, display)

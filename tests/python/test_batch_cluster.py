@@ -11,6 +11,7 @@ from pathlib import Path
 
 import psutil
 import pytest
+from distributed import Client
 
 from dask_processes import LoopbackCluster, assert_all_gone
 from meshik.batch import SUMMARY_NAME
@@ -109,12 +110,15 @@ def slow_shots(folder: Path, count: int):
     return [write_constraints(folder / f"shot{k}.json", tube_constraints(tube_set, frames=80 + k)) for k in range(count)]
 
 
-@pytest.mark.parametrize("stop", ["SIGTERM", "Ctrl+C"])
-def test_interrupted_batch_stops_cleanly_and_resumes(tmp_path, stop):
-    shots = slow_shots(tmp_path / "in", 8)
-    out = tmp_path / "out"
+FORMATS = ["--format", "drc,glb,ply,obj"]
+
+
+def interrupt_after_first_job(shots, out: Path, options, stop: str):
+    """Run `meshik batch` on the shots in a process of its own; once a job is complete, stop it
+    (SIGTERM, or Ctrl+C: SIGINT to its whole process group) and wait. Returns the processes it
+    had started (itself included) and its output."""
     command = [sys.executable, "-c", "import sys; from meshik.cli import main; sys.exit(main())", "batch",
-               *map(str, shots), "--out", str(out), "--jobs", "2", "--format", "drc,glb,ply,obj"]
+               *map(str, shots), "--out", str(out), *FORMATS, *options]
     batch = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                              start_new_session=True)
     deadline = time.monotonic() + 120
@@ -122,18 +126,20 @@ def test_interrupted_batch_stops_cleanly_and_resumes(tmp_path, stop):
         assert batch.poll() is None and time.monotonic() < deadline, batch.stdout.read().decode()
         time.sleep(0.02)
     processes = [psutil.Process(batch.pid)] + psutil.Process(batch.pid).children(recursive=True)
-    assert len(processes) >= 3  # the batch and its two workers at least
     if stop == "SIGTERM":
         batch.send_signal(signal.SIGTERM)
     else:  # a terminal's Ctrl+C reaches every process of the foreground group
         os.killpg(batch.pid, signal.SIGINT)
     output = batch.communicate(timeout=60)[0].decode()
     assert batch.returncode == 130, output
-    assert_all_gone(processes)
+    return processes, output
 
-    # nothing is written any more, nothing visible is partial, the report lists every job
+
+def check_stopped_cleanly(shots, out: Path):
+    """Nothing is written any more, nothing visible is partial, the report lists every job;
+    returns the names of the jobs complete on disk (some, not all)."""
     settled = sorted(p for p in out.rglob("*"))
-    time.sleep(1.0)
+    time.sleep(1.5)
     assert sorted(p for p in out.rglob("*")) == settled
     for folder in out.iterdir():
         if folder.is_dir():
@@ -143,9 +149,37 @@ def test_interrupted_batch_stops_cleanly_and_resumes(tmp_path, stop):
     finished = {folder.name for folder in out.iterdir() if (folder / REPORT_NAME).exists()}
     assert {job["name"] for job in first if job["status"] == "done"} <= finished
     assert finished and len(finished) < len(shots)
+    return finished
 
-    # a re-run finishes only what is missing
-    assert main(["batch", *map(str, shots), "--out", str(out), "--jobs", "2", "--format", "drc,glb,ply,obj",
-                 "--quiet"]) == 0
+
+def check_rerun_finishes_the_rest(shots, out: Path, finished, options):
+    """A second run skips the complete jobs and does the others."""
+    assert main(["batch", *map(str, shots), "--out", str(out), *FORMATS, "--quiet", *options]) == 0
     second = {job["name"]: job["status"] for job in json.loads((out / SUMMARY_NAME).read_text())["jobs"]}
     assert second == {shot.stem: "skipped" if shot.stem in finished else "done" for shot in shots}
+
+
+@pytest.mark.parametrize("stop", ["SIGTERM", "Ctrl+C"])
+def test_interrupted_batch_stops_cleanly_and_resumes(tmp_path, stop):
+    shots, out = slow_shots(tmp_path / "in", 8), tmp_path / "out"
+    processes, _ = interrupt_after_first_job(shots, out, ["--jobs", "2"], stop)
+    assert len(processes) >= 3  # the batch and its two workers at least
+    assert_all_gone(processes)
+    finished = check_stopped_cleanly(shots, out)
+    check_rerun_finishes_the_rest(shots, out, finished, ["--jobs", "2"])
+
+
+def test_interrupted_batch_on_a_cluster_stops_its_jobs(tmp_path):
+    """On a cluster that outlives the batch, the workers running its jobs are restarted."""
+    shots, out = slow_shots(tmp_path / "in", 8), tmp_path / "out"
+    with LoopbackCluster(tmp_path / "cluster", workers=2,
+                         scheduler_env={"DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0"}) as cluster:
+        with Client(cluster.address) as client:
+            client.wait_for_workers(2)
+            before = set(client.scheduler_info()["workers"])
+            interrupt_after_first_job(shots, out, ["--scheduler", cluster.address], "SIGTERM")
+            finished = check_stopped_cleanly(shots, out)
+            assert not any(client.processing().values())  # nothing of the batch is left on the cluster
+            client.wait_for_workers(2, timeout=60)
+            assert set(client.scheduler_info()["workers"]) != before  # (at least one) restarted
+        check_rerun_finishes_the_rest(shots, out, finished, ["--scheduler", cluster.address])

@@ -2,13 +2,14 @@
 stay inside --out, and a run killed at any moment leaves no file under its final name that is not
 complete. The cluster tests (test_batch_cluster.py) cover worker deaths and interrupts."""
 import json
+import socket
 import subprocess
 import sys
 import time
 
 import pytest
 
-from meshik import export_draco, export_gltf
+from meshik import batch, export_draco, export_gltf
 from meshik.batch import SUMMARY_NAME, job_names
 from meshik.cli import main
 from meshik.errors import PipelineError
@@ -101,3 +102,13 @@ def test_killed_job_leaves_no_partial_file(tmp_path, delay):
     process.kill()
     process.wait()
     assert out.exists() and no_partial_file(out)
+
+
+def test_an_unreachable_scheduler_is_one_line(shots, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(batch, "SCHEDULER_TIMEOUT", "1s")
+    with socket.socket() as probe:  # a port nothing listens on
+        probe.bind(("127.0.0.1", 0))
+        address = f"tcp://127.0.0.1:{probe.getsockname()[1]}"
+    assert main(["batch", str(shots[0]), "--out", str(tmp_path / "out"), "--scheduler", address]) == 1
+    assert capsys.readouterr().err.startswith(f"meshik: error: cannot reach the Dask scheduler at {address}: ")
+    assert not (tmp_path / "out").exists()
