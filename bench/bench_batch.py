@@ -45,12 +45,12 @@ def main() -> int:
 
 def write_shots(horse: pathlib.Path, gallop: pathlib.Path, folder: pathlib.Path, count: int):
     """`count` constraint files following the gallop (12 tracked vertices), shot k starting at frame k."""
+    from bench_pipeline import horse_files
     from meshik.meshio import load_mesh
     from meshik.tracking import farthest_point_handles, tracking_document
 
     folder.mkdir(parents=True)
-    examples = sorted((p for p in horse.glob("*.obj") if p.stem.isdigit()), key=lambda p: int(p.stem))
-    rest_path = horse / "reference.obj"
+    rest_path, examples = horse_files(horse)
     rest, _ = load_mesh(rest_path)
     frames = [(p.stem, load_mesh(p)[0]) for p in sorted(gallop.glob("*.obj")) if p.stem.isdigit()]
     handles = farthest_point_handles(rest, HANDLES)

@@ -55,7 +55,9 @@ def test_batch_on_a_loopback_cluster(tmp_path, samples_dir, capsys):
     broken.write_text(json.dumps(dict(json.loads((inputs / "bar-all.json").read_text()), examples=[str(inputs / "missing.obj")])))
     escaping = inputs / "...json"  # its stem, "..", would be the folder above --out
     escaping.write_bytes((inputs / "bar-all.json").read_bytes())
-    shots = good + [doomed, broken, escaping]
+    itself = inputs / "..json"  # its stem, ".", would be --out itself
+    itself.write_bytes((inputs / "bar-all.json").read_bytes())
+    shots = good + [doomed, broken, escaping, itself]
     assert len(shots) >= 8
 
     local = tmp_path / "local"
@@ -79,11 +81,12 @@ def test_batch_on_a_loopback_cluster(tmp_path, samples_dir, capsys):
         assert [job["status"] for job in again["jobs"]] == ["skipped"] * len(good), (report, again)
 
     assert {name: job["status"] for name, job in report.items()} == dict(
-        {shot.stem: "done" for shot in good}, **{"limb-even": "crashed", "broken": "failed", "..": "failed"}), "\n".join(f"{n}: {j['reason']}" for n, j in report.items())
+        {shot.stem: "done" for shot in good}, **{"limb-even": "crashed", "broken": "failed", "..": "failed", ".": "failed"}), "\n".join(f"{n}: {j['reason']}" for n, j in report.items())
     assert f"broken: FAILED: {broken}: examples[0]: mesh file not found" in error
     assert f"..: FAILED: {escaping}: job name '..' cannot be used as a file name inside {out}" in error
+    assert f".: FAILED: {itself}: job name '.' cannot be used as a file name inside {out}" in error
     assert f"limb-even: CRASHED: {doomed}: the worker process died each time it ran this job (2 runs" in error
-    assert f"3 of {len(shots)} jobs failed: limb-even, broken, .." in error
+    assert f"4 of {len(shots)} jobs failed: limb-even, broken, .., ." in error
 
     # the job whose worker was killed once ran again in another process and completed
     assert len(killed_once.read_text().split()) == 1 and len(killed_always.read_text().split()) == 2
