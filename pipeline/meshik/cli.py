@@ -118,10 +118,8 @@ def _run_pose(args) -> int:
 
 def _run_batch(args) -> int:
     """`meshik batch`: every job in parallel; 1 when any failed."""
-    from meshik.batch import run_batch
+    from meshik.batch import DEFAULT_RETRIES, run_batch
     from meshik.pipeline import parse_formats
-
-    from meshik.batch import DEFAULT_RETRIES
 
     local_only = [flag for flag, value in (("--jobs", args.jobs), ("--memory-limit", args.memory_limit),
                                            ("--retries", args.retries)) if value is not None]
