@@ -3,7 +3,6 @@ display and its messages share.
 
 On a terminal the bar redraws in place; elsewhere (logs, pipes) only the finished line is printed.
 """
-import sys
 from contextlib import contextmanager
 from typing import Callable, Iterator, Optional, TextIO
 

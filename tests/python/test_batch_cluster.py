@@ -107,6 +107,19 @@ def test_batch_on_a_loopback_cluster(tmp_path, samples_dir, capsys):
     assert sorted(p.name for p in out.iterdir()) == sorted([SUMMARY_NAME] + [shot.stem for shot in good])
 
 
+def test_local_cluster_retries_are_configurable(tmp_path, samples_dir, capsys, monkeypatch):
+    """--retries sets how often the local cluster re-runs a job whose worker died."""
+    shots = [sample_shot(samples_dir, "bar", slice(0, 4), tmp_path / f"{name}.json") for name in ("calm", "doomed")]
+    killed = tmp_path / "killed.txt"
+    monkeypatch.setenv(KILL_WORKER_VARIABLE, f"doomed,1,{killed}")  # dies once only
+    assert main(["batch", *map(str, shots), "--out", str(tmp_path / "out"), "--jobs", "1", "--retries", "0"]) == 1
+    assert f"doomed: CRASHED: {shots[1]}: the worker process died each time it ran this job (1 run:" in capsys.readouterr().err
+    killed.unlink()
+    assert main(["batch", *map(str, shots), "--out", str(tmp_path / "out"), "--jobs", "1", "--retries", "1"]) == 0
+    report = json.loads((tmp_path / "out" / SUMMARY_NAME).read_text())["jobs"]
+    assert [job["status"] for job in report] == ["skipped", "done"] and len(killed.read_text().split()) == 1
+
+
 def slow_shots(folder: Path, count: int):
     """`count` constraint files over one tube set, each some seconds of work (many frames, PLY and OBJ too)."""
     tube_set = write_tube_set(folder, rings=24, segments=20)
