@@ -34,11 +34,13 @@ setup_venv() {
   # and the `meshik` command.
   local site; site=$(.venv/bin/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
   echo "$root/pipeline" > "$site/meshik-dev.pth"
+  # The guard keeps processes started by multiprocessing's spawn (Dask's workers) from running it again.
   cat > .venv/bin/meshik <<PY
 #!$root/.venv/bin/python
 import sys
 from meshik.cli import main
-sys.exit(main())
+if __name__ == "__main__":
+    sys.exit(main())
 PY
   chmod +x .venv/bin/meshik
   echo "$want" > $stamp

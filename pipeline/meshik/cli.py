@@ -70,12 +70,25 @@ def _parser() -> argparse.ArgumentParser:
     _job_options(pose)
     pose.set_defaults(run=_run_pose)
 
-    batch = commands.add_parser("batch", help="pose many constraint files in parallel",
-                                description="Pose every constraint file in its own worker process, each into "
-                                            "DIR/<name of the file>/. A failing job does not stop the others; "
-                                            "complete jobs are skipped on a re-run. DIR/batch-report.json lists every job.")
+    batch = commands.add_parser("batch", help="pose many constraint files in parallel on Dask",
+                                description="Pose every constraint file as one Dask task, each into DIR/<name of the "
+                                            "file>/, on a local cluster of worker processes or on a running Dask "
+                                            "scheduler. A failing job does not stop the others; a job whose worker "
+                                            "dies is retried; complete jobs are skipped on a re-run. "
+                                            "DIR/batch-report.json lists every job.")
     batch.add_argument("constraints", metavar="CONSTRAINTS", nargs="+", help="constraint files")
-    batch.add_argument("--jobs", "-j", type=_positive_int, default=1, metavar="N", help="worker processes at a time (default 1)")
+    batch.add_argument("--jobs", "-j", type=_positive_int, default=None, metavar="N",
+                       help="worker processes of the local cluster (default: one per core)")
+    batch.add_argument("--memory-limit", default=None, metavar="SIZE",
+                       help="memory per local worker, e.g. 4GB; a worker past 95%% of it is restarted and its job "
+                            "retried (default auto: the machine's memory shared out; 0: no limit)")
+    batch.add_argument("--retries", type=_non_negative_int, default=None, metavar="N",
+                       help="times a job whose local worker died is run again before it is reported crashed (default 2)")
+    batch.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run on this Dask scheduler (e.g. tcp://host:8786) instead of a local cluster; its workers "
+                            "must see the input files and DIR at the same paths")
+    batch.add_argument("--cache-mb", type=_non_negative_int, default=512, metavar="MB",
+                       help="memory per worker for example sets shared by several jobs (default 512; 0: no cache)")
     _job_options(batch)
     batch.set_defaults(run=_run_batch)
 
@@ -138,13 +151,21 @@ def _run_pose(args) -> int:
 
 def _run_batch(args) -> int:
     """`meshik batch`: every job in parallel; 1 when any failed."""
-    from meshik.batch import run_batch
+    from meshik.batch import DEFAULT_RETRIES, run_batch
     from meshik.pipeline import parse_formats
 
-    outcomes = run_batch(args.constraints, args.out, jobs=args.jobs, quiet=args.quiet, simplify=args.simplify,
-                         simplifier=args.simplifier, formats=parse_formats(args.formats), feature_space=args.feature_space,
-                         quantization_bits=args.quantization_bits, force=args.force)
-    failed = [o for o in outcomes if o.status == "failed"]
+    local_only = [flag for flag, value in (("--jobs", args.jobs), ("--memory-limit", args.memory_limit),
+                                           ("--retries", args.retries)) if value is not None]
+    if args.scheduler and local_only:
+        print(f"meshik batch: error: {', '.join(local_only)} set up the local cluster; with --scheduler the cluster's "
+              f"own workers and settings apply", file=sys.stderr)
+        return 2
+    retries = DEFAULT_RETRIES if args.retries is None else args.retries
+    outcomes = run_batch(args.constraints, args.out, jobs=args.jobs, memory_limit=args.memory_limit or "auto",
+                         scheduler=args.scheduler, retries=retries, cache_mb=args.cache_mb, quiet=args.quiet,
+                         simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
+                         feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force)
+    failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
     return 1 if failed else 0
@@ -191,6 +212,14 @@ def _positive_int(text: str) -> int:
     value = int(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text}")
+    return value
+
+
+def _non_negative_int(text: str) -> int:
+    """argparse type: an integer >= 0."""
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text}")
     return value
 
 

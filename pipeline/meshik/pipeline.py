@@ -14,7 +14,7 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import Any, Dict, Optional, Sequence, TextIO, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
@@ -24,7 +24,7 @@ from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encod
 from meshik.export_gltf import animation_glb
 from meshik.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing import PosedAnimation, pose_animation
-from meshik.progress import Progress
+from meshik.progress_bars import stage_progress
 from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
 from meshik.staging import StagedOutput, check_writable, is_complete, read_report
 
@@ -36,14 +36,15 @@ GENERATOR = "MeshIK pipeline"
 def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = None, simplifier: str = "fast",
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
-             stream: Optional[TextIO] = None) -> Dict[str, Any]:
+             stream: Optional[TextIO] = None, example_cache=None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
               or None for full resolution; simplifier: "fast" or "openmesh";
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
-    force: run even when out_dir already holds the complete outputs of the same job.
+    force: run even when out_dir already holds the complete outputs of the same job;
+    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from.
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """
@@ -65,7 +66,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
 
     name = constraints_path.stem
     say = _Announcer(name, quiet, stream)
-    meshes = load_example_set(constraint_set.rest, constraint_set.examples)
+    meshes, features = example_cache.get(constraint_set.rest, constraint_set.examples) if example_cache is not None \
+        else (load_example_set(constraint_set.rest, constraint_set.examples), None)
     resolved = constraint_files.resolve(constraint_set, meshes.rest)
     clock.lap("load")
     say(f"{len(meshes.rest)} vertices, {len(meshes.faces)} triangles, {len(meshes.examples)} examples, "
@@ -80,11 +82,10 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     posed_meshes = simplified.meshes if simplified is not None else meshes
     handles, kept = remap_handles(simplified, resolved.handles)
 
-    progress = Progress(f"{name}: posing", len(resolved.frame_names), quiet=quiet, stream=stream)
-    posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options,
-                           on_frame=progress.advance, context=str(constraints_path),
-                           frame_names=resolved.frame_names)
-    progress.finish(f"{posed.solve_seconds.sum():.2f} s")
+    with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
+        posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
+                               context=str(constraint_set.rest), features=features if simplified is None else None,
+                               frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
 
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
@@ -92,10 +93,10 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if {"drc", "glb"} & set(formats):
         _check_grid_resolution(constraints_path, grid, posed_meshes.rest, posed.vertices, resolved.frame_names,
                                resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept])
-    writing = Progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
-    with StagedOutput(out_dir) as staged:
+    writing = stage_progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
+    with StagedOutput(out_dir) as staged, writing as advance:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
-                simplified is not None, grid, constraint_set.fps, formats, writing)
+                simplified is not None, grid, constraint_set.fps, formats, advance)
         clock.lap("export")
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
@@ -156,26 +157,25 @@ def _target_triangles(simplify: Union[int, float], triangles: int) -> int:
 
 def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray, posed: PosedAnimation,
             frame_names: Sequence[str], vertex_ids: np.ndarray, simplified: bool, grid, fps: float,
-            formats: Tuple[str, ...], progress: Progress) -> None:
-    """Write every requested format into the staging folder."""
+            formats: Tuple[str, ...], advance: Callable[[], None]) -> None:
+    """Write every requested format into the staging folder; advance() after each file."""
     for fmt in formats:
         if fmt == "drc":
             for frame, vertices in zip(frame_names, posed.vertices):
                 staged.write(f"frames/{frame}.drc", encode_frame(vertices, faces, vertex_ids, grid))
-                progress.advance()
+                advance()
         elif fmt == "glb":
             staged.write(f"{name}.glb", animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, grid, fps,
                                                       name, GENERATOR))
-            progress.advance()
+            advance()
         else:
             for frame, vertices in zip(frame_names, posed.vertices):
                 relative = f"frames/{frame}.{fmt}"
                 save_mesh(staged.path(relative), vertices, faces)
                 staged.added(relative)
-                progress.advance()
+                advance()
             if simplified and "vertex_ids.txt" not in staged.files:
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
-    progress.finish()
 
 
 def _file_count(formats: Tuple[str, ...], frames: int) -> int:

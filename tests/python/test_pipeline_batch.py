@@ -1,13 +1,15 @@
-"""Batch runs: parallel workers, a failing job does not stop the others, complete jobs are skipped,
-and a run killed at any moment leaves no file under its final name that is not complete."""
+"""Batch runs on Dask: a failing job does not stop the others, complete jobs are skipped, job names
+stay inside --out, and a run killed at any moment leaves no file under its final name that is not
+complete. The cluster tests (test_batch_cluster.py) cover worker deaths and interrupts."""
 import json
+import socket
 import subprocess
 import sys
 import time
 
 import pytest
 
-from meshik import export_draco, export_gltf
+from meshik import batch, export_draco, export_gltf
 from meshik.batch import SUMMARY_NAME, job_names
 from meshik.cli import main
 from meshik.errors import PipelineError
@@ -47,7 +49,7 @@ def test_failing_job_does_not_stop_the_others(shots, tmp_path, capsys):
     summary = json.loads((out / SUMMARY_NAME).read_text())
     assert [job["status"] for job in summary["jobs"]] == ["skipped", "failed", "skipped"]
     # other options make other outputs: the job runs again
-    assert main(["batch", str(shots[0]), "--out", str(out), "--format", "glb", "--quiet"]) == 0
+    assert main(["batch", str(shots[0]), "--out", str(out), "--jobs", "1", "--format", "glb", "--quiet"]) == 0
     assert json.loads((out / SUMMARY_NAME).read_text())["jobs"][0]["status"] == "done"
     assert sorted(json.loads((out / "walk" / REPORT_NAME).read_text())["outputs"]) == ["walk.glb"]
     assert not (out / "walk" / "frames" / "0001.drc").exists()  # outputs of the earlier options removed
@@ -58,6 +60,13 @@ def test_job_names_disambiguate_by_folder(tmp_path):
         ["a-shot", "b-shot", "walk"]
     with pytest.raises(PipelineError, match="would both write to the job folder"):
         job_names([tmp_path / "shot.json", tmp_path / "shot.json"])
+
+
+def test_local_cluster_options_conflict_with_a_scheduler(shots, tmp_path, capsys):
+    assert main(["batch", str(shots[0]), "--out", str(tmp_path / "out"), "--scheduler", "tcp://127.0.0.1:1",
+                 "--jobs", "2", "--retries", "1"]) == 2
+    assert "--jobs, --retries set up the local cluster" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
 
 
 def no_partial_file(folder):
@@ -72,7 +81,7 @@ def no_partial_file(folder):
             assert len(export_gltf.read_animation_glb(path.read_bytes()).frames) > 0, path
         elif path.suffix == ".json":
             report = json.loads(path.read_text())
-            for name, size in report["outputs"].items():
+            for name, size in report.get("outputs", {}).items():
                 assert (folder / name).stat().st_size == size, name
         else:
             assert len(load_mesh(path)[1]) > 0, path
@@ -85,12 +94,21 @@ def test_killed_job_leaves_no_partial_file(tmp_path, delay):
     tube_set = write_tube_set(tmp_path / "in", rings=20, segments=16)
     shot = write_constraints(tmp_path / "in" / "long.json", tube_constraints(tube_set, frames=40))
     out = tmp_path / "out"
-    process = subprocess.Popen([sys.executable, "-m", "meshik.batch_worker", json.dumps(
-        {"constraints": str(shot), "destination": str(out), "options": {"formats": ["drc", "ply", "obj", "glb"]},
-         "result": str(tmp_path / "result.json")})])
+    process = subprocess.Popen([sys.executable, "-c", "import sys; from meshik.cli import main; sys.exit(main())",
+                                "pose", str(shot), "--out", str(out), "--format", "drc,ply,obj,glb", "--quiet"])
     while process.poll() is None and not (out.exists() and any(out.glob(".meshik-partial-*"))):
         time.sleep(0.002)
     time.sleep(delay)
     process.kill()
     process.wait()
     assert out.exists() and no_partial_file(out)
+
+
+def test_an_unreachable_scheduler_is_one_line(shots, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(batch, "SCHEDULER_TIMEOUT", "1s")
+    with socket.socket() as probe:  # a port nothing listens on
+        probe.bind(("127.0.0.1", 0))
+        address = f"tcp://127.0.0.1:{probe.getsockname()[1]}"
+    assert main(["batch", str(shots[0]), "--out", str(tmp_path / "out"), "--scheduler", address]) == 1
+    assert capsys.readouterr().err.startswith(f"meshik: error: cannot reach the Dask scheduler at {address}: ")
+    assert not (tmp_path / "out").exists()
