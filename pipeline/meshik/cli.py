@@ -25,14 +25,14 @@ def main(argv: Optional[List[str]] = None) -> int:
     try:
         return args.run(args)
     except ValueError as error:  # PipelineError and the core's InputError: bad input, the message says why
-        print(f"meshik: error: {error}", file=sys.stderr)
+        _print_error(str(error))
         return 1
     except OSError as error:  # a file system failure outside the checked paths: disk full, I/O error
         where = f"{error.filename}: " if error.filename else ""
-        print(f"meshik: error: {where}{error.strerror or error}", file=sys.stderr)
+        _print_error(f"{where}{error.strerror or error}")
         return 1
     except MemoryError:
-        print("meshik: error: out of memory (the input is larger than this machine can hold)", file=sys.stderr)
+        _print_error("out of memory (the input is larger than this machine can hold)")
         return 1
     except KeyboardInterrupt:
         print("meshik: interrupted", file=sys.stderr)
@@ -40,6 +40,13 @@ def main(argv: Optional[List[str]] = None) -> int:
     finally:
         if previous_sigterm is not None:
             signal.signal(signal.SIGTERM, previous_sigterm)
+
+
+def _print_error(message: str) -> None:
+    """Print `meshik: error: message` on one line of stderr; file names that are not valid UTF-8
+    are shown with backslash escapes rather than failing to print."""
+    line = f"meshik: error: {message}".encode("utf-8", "backslashreplace").decode("utf-8")
+    print(line, file=sys.stderr)
 
 
 def _stop_on_sigterm():
@@ -193,7 +200,7 @@ def _run_info(args) -> int:
                 if key != "file":
                     print(f"  {key}: {value}")
     for error in errors:
-        print(f"meshik: error: {error}", file=sys.stderr)
+        _print_error(error)
     return 1 if errors else 0
 
 
@@ -241,7 +248,7 @@ def _simplify_target(text: str):
 def _float_list(text: str) -> List[float]:
     """argparse type: comma-separated finite numbers."""
     try:
-        values = [float(part) for part in text.split(",") if part.strip()]
+        values = [float(part) for part in text.split(",")]
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from None
     if not values or any(v != v or v in (float("inf"), float("-inf")) for v in values):

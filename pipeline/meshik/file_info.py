@@ -7,6 +7,7 @@ from typing import Any, Dict, List, Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError, PipelineError
+from meshik.isolated_load import check_input_file
 
 
 def describe_files(paths: List) -> Tuple[List[Dict[str, Any]], List[str]]:
@@ -33,8 +34,7 @@ def describe_files(paths: List) -> Tuple[List[Dict[str, Any]], List[str]]:
 def _describe(path: Path):
     """(summary, triangles or None) of one file, by extension."""
     suffix = path.suffix.lower()
-    if not path.is_file():
-        raise MeshFileError(f"{path}: file not found")
+    check_input_file(path, "file")
     if suffix == ".drc":
         return _describe_draco(path), None
     if suffix == ".glb":

@@ -6,6 +6,7 @@ a notebook down with it, nor be reported as "killed by signal 11": the reader ru
 child process that sends the arrays back through a pipe, and a child that dies is reported as a
 malformed file, naming it.
 """
+import faulthandler
 import io
 import os
 import signal
@@ -27,6 +28,7 @@ def check_input_file(path: Path, what: str) -> None:
     Says which: missing, a folder, a device or FIFO (never read: it could block or never end),
     or too large.
     """
+    _check_utf8_name(path)
     try:
         status = path.stat()
     except FileNotFoundError:
@@ -44,6 +46,14 @@ def check_input_file(path: Path, what: str) -> None:
         raise MeshFileError(f"{path}: cannot read the {what}: permission denied")
 
 
+def _check_utf8_name(path: Path) -> None:
+    """MeshFileError when the file's name is not valid UTF-8 (MeshLab's readers and writers take UTF-8)."""
+    try:
+        str(path).encode("utf-8")
+    except UnicodeEncodeError:
+        raise MeshFileError(f"{path}: the file name is not valid UTF-8: rename the file") from None
+
+
 def isolated_load(path: Path) -> Tuple[np.ndarray, np.ndarray]:
     """(#V by 3 float64 positions, #F by 3 int64 triangles) read by pymeshlab in a forked child.
 
@@ -55,6 +65,7 @@ def isolated_load(path: Path) -> Tuple[np.ndarray, np.ndarray]:
     pid = os.fork()
     if pid == 0:  # the child: read, send, and leave without running the parent's clean-up
         os.close(read_end)
+        faulthandler.disable()  # a crash here is expected and reported by the parent, not dumped
         status = 0
         try:
             _send(write_end, _read_with_pymeshlab(pymeshlab, path))

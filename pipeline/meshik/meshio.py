@@ -96,6 +96,12 @@ def save_mesh(path, vertices: np.ndarray, faces: np.ndarray) -> None:
     """
     import pymeshlab
 
+    try:
+        str(path).encode("utf-8")
+    except UnicodeEncodeError:
+        raise OutputError(f"{path}: the file name is not valid UTF-8: choose another name") from None
+    if not np.isfinite(vertices).all():
+        raise OutputError(f"{path}: refusing to write a mesh with non-finite coordinates")
     meshes = pymeshlab.MeshSet()
     meshes.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(vertices, dtype=np.float64),
                                    face_matrix=np.asarray(faces, dtype=np.int32)))

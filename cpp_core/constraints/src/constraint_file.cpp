@@ -37,19 +37,32 @@ std::size_t first_non_utf8_byte(std::string_view text) {
   return std::string_view::npos;
 }
 
-// The bytes of the file at `path`; ConstraintError when it is missing or unreadable.
+// Constraint files larger than this are refused (a bound on memory, and on /dev/zero).
+constexpr std::uintmax_t kMaxConstraintFileBytes = std::uintmax_t{1} << 30;
+
+// The bytes of the file at `path`; ConstraintError when it is missing, not a regular file (a
+// folder, device or FIFO, which could block or never end), larger than kMaxConstraintFileBytes,
+// or unreadable.
 std::string read_bytes(const std::string& path) {
   std::error_code error;
-  if (!std::filesystem::exists(path, error))
-    throw ConstraintError(path + ": constraint file not found");
-  if (std::filesystem::is_directory(path, error))
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) throw ConstraintError(path + ": constraint file not found");
+  if (std::filesystem::is_directory(status))
     throw ConstraintError(path + ": cannot read the constraint file: " + std::strerror(EISDIR));
+  if (!std::filesystem::is_regular_file(status))
+    throw ConstraintError(path + ": is not a regular file (a device, FIFO or socket), not a constraint file");
+  if (std::filesystem::file_size(path, error) > kMaxConstraintFileBytes)
+    throw ConstraintError(path + ": is larger than the 1 GiB accepted for a constraint file");
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw ConstraintError(path + ": cannot read the constraint file: " + std::strerror(errno));
   std::string bytes;
   char buffer[65536];
   std::size_t count = 0;
-  while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) bytes.append(buffer, count);
+  while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
+    bytes.append(buffer, count);
+    if (bytes.size() > kMaxConstraintFileBytes)
+      throw ConstraintError(path + ": is larger than the 1 GiB accepted for a constraint file");
+  }
   if (std::ferror(file.get())) throw ConstraintError(path + ": cannot read the constraint file: " + std::strerror(errno));
   return bytes;
 }

@@ -3,6 +3,8 @@
 #include "rigid_motion.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -73,8 +75,15 @@ void read_options(const JsonValue& top, ConstraintDocument& document, ViolationL
     }
   if (const JsonValue* value = top.find("weight_regularization"))
     document.weight_regularization = expect_number(*value, "weight_regularization", problems, 0.0);
-  if (const JsonValue* value = top.find("max_iterations"))
+  if (const JsonValue* value = top.find("max_iterations")) {
     document.max_iterations = expect_int(*value, "max_iterations", problems, 1);
+    constexpr std::int64_t kMaxIterations = std::numeric_limits<std::int32_t>::max();
+    if (document.max_iterations && *document.max_iterations > kMaxIterations) {
+      problems.add("max_iterations", "expected at most " + std::to_string(kMaxIterations) + ", got " +
+                                         std::to_string(*document.max_iterations));
+      document.max_iterations.reset();
+    }
+  }
   if (const JsonValue* value = top.find("tolerance"))
     document.tolerance = expect_number(*value, "tolerance", problems, 0.0, true);
   if (const JsonValue* value = top.find("fps"))
