@@ -21,6 +21,17 @@ bool finite3(const double* p) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
+// The largest absolute coordinate of a triangle's corners t[0..2], as short text ("1e+300").
+std::string magnitude_text(const double* vertices, const int* t) {
+  double largest = 0.0;
+  for (int q = 0; q < 3; ++q)
+    for (int d = 0; d < 3; ++d) largest = std::max(largest, std::abs(vertices[3 * static_cast<size_t>(t[q]) + d]));
+  std::ostringstream text;
+  text.precision(3);
+  text << largest;
+  return text.str();
+}
+
 Eigen::Vector3d point(const double* vertices, int v) {
   return Eigen::Vector3d(vertices[3 * v], vertices[3 * v + 1], vertices[3 * v + 2]);
 }
@@ -51,6 +62,9 @@ void validate_rest_mesh(const MeshView& rest) {
     const Eigen::Vector3d e2 = point(rest.vertices, t[2]) - a;
     const double longest =
         std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+    if (!std::isfinite(longest) || !std::isfinite(e1.cross(e2).norm()))
+      throw InputError("triangle " + std::to_string(j) + " is too large to measure in double precision (a corner's "
+                       "coordinates reach " + magnitude_text(rest.vertices, t) + ")");
     if (!(e1.cross(e2).norm() > kZeroAreaRatio * longest))
       throw InputError("triangle " + std::to_string(j) + " has zero area in the rest mesh");
   }

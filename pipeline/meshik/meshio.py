@@ -73,7 +73,20 @@ def load_example_set(rest_path, example_paths: Sequence) -> ExampleMeshes:
 
 def _check_same_topology(path: Path, vertices: np.ndarray, faces: np.ndarray,
                          rest_path: Path, rest: np.ndarray, rest_faces: np.ndarray) -> None:
-    """MeshFileError unless an example has the rest mesh's vertex count and identical triangle list."""
+    """MeshFileError unless an example has the rest mesh's vertex count and identical triangle list.
+
+    When the rest mesh has fewer vertices or triangles than the example, MeshLab most likely dropped
+    some of the rest's while reading (non-finite coordinates, a triangle with a repeated corner):
+    the rest mesh is named as the file at fault.
+    """
+    if len(vertices) > len(rest):
+        raise MeshFileError(f"{rest_path}: has {len(rest)} vertices but the example {path} has {len(vertices)}: "
+                            "MeshLab drops vertices with NaN or infinite coordinates when reading; check the rest mesh")
+    if len(faces) > len(rest_faces) and len(vertices) == len(rest):
+        first = int(np.argmax(np.append((faces[:len(rest_faces)] != rest_faces).any(axis=1), True)))
+        raise MeshFileError(f"{rest_path}: triangle {first} could not be read (MeshLab drops triangles with a repeated "
+                            f"corner or a vertex with NaN or infinite coordinates), so the rest mesh has "
+                            f"{len(rest_faces)} triangles but the example {path} has {len(faces)}")
     if len(vertices) != len(rest):
         hint = " (MeshLab drops vertices with NaN or infinite coordinates when loading)" if len(vertices) < len(rest) else ""
         raise MeshFileError(f"{path}: has {len(vertices)} vertices but the rest mesh {rest_path} has {len(rest)}{hint}; "

@@ -127,7 +127,9 @@ MESH_CASES = {
     "example with fewer vertices": ("example_1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "example_1.obj"),
     "example with other triangles": ("example_2.obj", None, "example_2.obj"),
     "degenerate rest triangle": ("rest.obj", "degenerate", "triangle"),
-    "rest vertex 1e300": ("rest.obj", "huge", "rest"),
+    "rest vertex 1e300": ("rest.obj", "huge", "rest.obj: triangle 0 is too large"),
+    "rest vertex NaN (blamed on the rest)": ("rest.obj", "nan", "rest.obj: has 131 vertices"),
+    "rest triangle f 1 1 2 (blamed on the rest)": ("rest.obj", "repeat", "rest.obj: triangle 0 could not be read"),
 }
 
 ARGUMENT_CASES = {
@@ -194,8 +196,12 @@ def _mesh_text(work, kind):
         faces = [line for line in rest if line.startswith("f ")]
         corners = [vertex_lines[int(c.split("/")[0]) - 1] for c in faces[0].split()[1:]]
         return "\n".join(rest[corners[0]] if i in corners[1:] else line for i, line in enumerate(rest)) + "\n"
-    if kind == "huge":
-        return "\n".join("v 1e300 0 0" if i == vertex_lines[0] else line for i, line in enumerate(rest)) + "\n"
+    if kind in ("huge", "nan"):
+        bad = "v 1e300 0 0" if kind == "huge" else "v nan 0 0"
+        return "\n".join(bad if i == vertex_lines[0] else line for i, line in enumerate(rest)) + "\n"
+    if kind == "repeat":
+        first_face = next(i for i, line in enumerate(rest) if line.startswith("f "))
+        return "\n".join("f 1 1 2" if i == first_face else line for i, line in enumerate(rest)) + "\n"
     faces = [i for i, line in enumerate(rest) if line.startswith("f ")]  # other triangles: swap two faces' corners
     a = rest[faces[0]].split()
     rest[faces[0]] = " ".join([a[0], a[2], a[1], a[3]])
@@ -205,7 +211,7 @@ def _mesh_text(work, kind):
 @pytest.mark.parametrize("case", sorted(MESH_CASES))
 def test_mesh_file_faults(work, case, capsys):
     name, text, expected = MESH_CASES[case]
-    if text in (None, "degenerate", "huge"):
+    if text in (None, "degenerate", "huge", "nan", "repeat"):
         text = _mesh_text(work, text)
     (work / "in" / name).write_text(text)
     check_refused(work, ["pose", work / "in" / "animation.json", "--out", work / "out", "--quiet"], expected, capsys)
