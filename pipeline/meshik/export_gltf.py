@@ -4,13 +4,15 @@ Layout: one mesh with one primitive whose POSITION, indices and "_ORIGINAL_ID" l
 KHR_draco_mesh_compression buffer (the rest pose); one morph target per frame (KHR_draco does not
 compress morph targets) holding frame - decoded rest, in Draco's decoded vertex order, so that
 rest + target k reproduces frame k to float32 precision; one animation that steps the morph
-weights through the frames at the file's frame rate (linear in between). Written by hand: a GLB
-is a 12-byte header, a JSON chunk and a binary chunk.
+weights through the frames at the file's frame rate (linear in between). The animation's
+#frames x #frames weights are one sparse accessor (zero but for each key's own target), so the
+file and the writer's memory grow linearly with the frames. Written by hand: a GLB is a 12-byte
+header, a JSON chunk and a binary chunk.
 """
 import json
 import struct
 from dataclasses import dataclass
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -23,6 +25,22 @@ _CHUNK_JSON, _CHUNK_BIN = 0x4E4F534A, 0x004E4942
 _FLOAT, _UNSIGNED_INT = 5126, 5125
 _ARRAY_BUFFER = 34962
 _FLOAT_EXACT_INTEGERS = 2 ** 24
+_GLB_MAX_BYTES = 2 ** 32 - 1          # the GLB header's 32-bit length
+MAX_GLB_FRAMES = 2 ** 16 - 1         # sparse weight indices (uint32) address #frames squared values
+
+
+def glb_size_problem(frames: int, vertices: int) -> Optional[str]:
+    """Why an animation of `frames` frames of `vertices` vertices cannot be one .glb, or None.
+
+    Known before posing: the morph targets alone take frames x vertices x 12 bytes.
+    """
+    if frames > MAX_GLB_FRAMES:
+        return f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb can hold"
+    estimate = frames * (vertices * 12 + 12) + vertices * 16
+    if estimate > _GLB_MAX_BYTES:
+        return (f"{frames} frames of {vertices} vertices need about {estimate / 2 ** 30:.1f} GiB of morph targets, "
+                "more than the 4 GiB a .glb file can hold")
+    return None
 
 
 def animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
@@ -40,14 +58,18 @@ def animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame
     local = _local_indices(np.asarray(vertex_ids), decoded.vertex_ids)
     base = decoded.vertices.astype(np.float32)
     targets = (np.asarray(frames, dtype=np.float64)[:, local] - base.astype(np.float64)).astype(np.float32)
+    problem = glb_size_problem(len(frames), len(base))
+    if problem:
+        raise ValueError(problem)
     times = (np.arange(len(frames)) / fps).astype(np.float32)
-    weights = np.eye(len(frames), dtype=np.float32)
+    keys = np.arange(len(frames), dtype=np.uint32)
 
     binary = _BinaryBuilder()
     draco_view = binary.view(draco)
     targets_view = binary.view(targets.tobytes(), stride=12, target=_ARRAY_BUFFER)
     times_view = binary.view(times.tobytes())
-    weights_view = binary.view(weights.tobytes())
+    weight_indices_view = binary.view((keys * (len(frames) + 1)).tobytes())  # key k sets target k
+    weight_values_view = binary.view(np.ones(len(frames), dtype=np.float32).tobytes())
 
     count = len(base)
     accessors: List[Dict[str, Any]] = [
@@ -59,7 +81,10 @@ def animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame
         accessors.append(_accessor(targets_view, _FLOAT, count, "VEC3", target, byte_offset=k * count * 12))
     times_accessor = len(accessors)
     accessors.append(_accessor(times_view, _FLOAT, len(times), "SCALAR", times.reshape(-1, 1)))
-    accessors.append({"bufferView": weights_view, "componentType": _FLOAT, "count": int(weights.size), "type": "SCALAR"})
+    accessors.append({"componentType": _FLOAT, "count": len(frames) ** 2, "type": "SCALAR",
+                      "sparse": {"count": len(frames),
+                                 "indices": {"bufferView": weight_indices_view, "componentType": _UNSIGNED_INT},
+                                 "values": {"bufferView": weight_values_view}}})
 
     primitive = {
         "attributes": {"POSITION": 0, ID_SEMANTIC: 2},

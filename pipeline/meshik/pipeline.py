@@ -21,7 +21,7 @@ import numpy as np
 from meshik import constraints as constraint_files
 from meshik.errors import PipelineError
 from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
-from meshik.export_gltf import animation_glb
+from meshik.export_gltf import animation_glb, glb_size_problem
 from meshik.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
@@ -81,6 +81,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     clock.lap("simplify")
     posed_meshes = simplified.meshes if simplified is not None else meshes
     handles, kept = remap_handles(simplified, resolved.handles)
+    too_large = glb_size_problem(len(resolved.frame_names), len(posed_meshes.rest)) if "glb" in formats else None
+    if too_large:
+        raise PipelineError(f"{constraints_path}: {too_large}: leave glb out of --format or split the animation")
 
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
         posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
