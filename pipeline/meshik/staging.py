@@ -1,9 +1,12 @@
 """Outputs that appear complete or not at all.
 
-A job writes its files into a hidden staging folder inside the destination; commit() then moves
-each file to its final name (an atomic rename on one file system) and writes report.json last,
-so a finished report means every file it lists is complete. An interrupted job leaves only the
-hidden staging folder, which the next run in that destination removes.
+A job writes its files into a hidden staging folder inside the destination; commit() then takes
+the previous report.json out of place, moves each file to its final name (an atomic rename on one
+file system) and puts the new report.json in place last. So whenever report.json is present, every
+file it lists has exactly the bytes it records (their SHA-256): a run killed while it commits
+leaves no report (the folder reads as incomplete, never as the old result beside new files), and
+the next run completes it. An interrupted job leaves only the hidden staging folder, which the
+next run in that destination removes.
 
 A run removes an earlier output only when it can prove that it wrote it: the earlier report must
 list the file inside the destination with the SHA-256 of the bytes written then, the file on disk
@@ -23,6 +26,8 @@ from meshik.safe_paths import inside
 
 REPORT_NAME = "report.json"
 _STAGING_PREFIX = ".meshik-partial-"
+# Where commit() keeps the previous report while it moves the new files into place.
+_REPLACED_REPORT_NAME = ".meshik-replaced-report.json"
 
 
 def check_writable(destination: Path) -> None:
@@ -42,10 +47,16 @@ def check_writable(destination: Path) -> None:
 
 def read_report(destination: Path) -> Optional[Dict[str, Any]]:
     """The report.json of a destination if present and readable JSON, else None."""
+    return _read_json(Path(destination) / REPORT_NAME)
+
+
+def _read_json(path: Path) -> Optional[Dict[str, Any]]:
+    """The JSON object in the file at `path`, or None when it is missing, unreadable or no object."""
     try:
-        return json.loads((Path(destination) / REPORT_NAME).read_text())
+        value = json.loads(path.read_text())
     except (OSError, ValueError):
         return None
+    return value if isinstance(value, dict) else None
 
 
 def is_complete(destination: Path, job_key: str) -> bool:
@@ -114,19 +125,26 @@ class StagedOutput:
         came from an earlier run (see the module's note); `inputs` are this run's input files, never
         removed. Returns the report as written.
         """
-        previous = read_report(self.destination) or {}
+        replaced = self.destination / _REPLACED_REPORT_NAME
+        previous = read_report(self.destination) or _read_json(replaced) or {}
         report = dict(report, outputs=dict(sorted(self.files.items())),
                       output_sha256=dict(sorted(self.digests.items())))
+        staged_report = self.staging / REPORT_NAME
         try:
+            staged_report.write_text(json.dumps(report, indent=1))
+            # From here until the new report is in place the folder has no report.json: a run killed
+            # meanwhile leaves it marked incomplete (never an old report beside new files), and the
+            # next run still finds the old report's list under _REPLACED_REPORT_NAME.
+            if (self.destination / REPORT_NAME).exists():
+                os.replace(self.destination / REPORT_NAME, replaced)
             for relative in self.files:
                 target = self.destination / relative
                 target.parent.mkdir(parents=True, exist_ok=True)
                 os.replace(self.staging / relative, target)
             for stale in _provably_written(self.destination, previous, set(self.files), inputs):
                 stale.unlink()
-            staged_report = self.staging / REPORT_NAME
-            staged_report.write_text(json.dumps(report, indent=1))
             os.replace(staged_report, self.destination / REPORT_NAME)
+            replaced.unlink(missing_ok=True)
         except OSError as error:
             raise OutputError(f"{self.destination}: cannot move the outputs into place: {error.strerror or error}") from None
         finally:
