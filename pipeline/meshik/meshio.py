@@ -75,13 +75,14 @@ def _check_same_topology(path: Path, vertices: np.ndarray, faces: np.ndarray,
                          rest_path: Path, rest: np.ndarray, rest_faces: np.ndarray) -> None:
     """MeshFileError unless an example has the rest mesh's vertex count and identical triangle list.
 
-    When the rest mesh has fewer vertices or triangles than the example, MeshLab most likely dropped
+    When the rest mesh has fewer vertices or triangles than the example, MeshLab may have dropped
     some of the rest's while reading (non-finite coordinates, a triangle with a repeated corner):
-    the rest mesh is named as the file at fault.
+    the message points at the rest mesh too.
     """
     if len(vertices) > len(rest):
-        raise MeshFileError(f"{rest_path}: has {len(rest)} vertices but the example {path} has {len(vertices)}: "
-                            "MeshLab drops vertices with NaN or infinite coordinates when reading; check the rest mesh")
+        raise MeshFileError(f"{path}: has {len(vertices)} vertices but the rest mesh {rest_path} has {len(rest)}; every "
+                            "example must have the rest mesh's vertices (MeshLab drops vertices with NaN or infinite "
+                            f"coordinates when reading: if {rest_path} has such vertices, fix them there)")
     if len(faces) > len(rest_faces) and len(vertices) == len(rest):
         first = int(np.argmax(np.append((faces[:len(rest_faces)] != rest_faces).any(axis=1), True)))
         raise MeshFileError(f"{rest_path}: triangle {first} could not be read (MeshLab drops triangles with a repeated "

@@ -128,7 +128,7 @@ MESH_CASES = {
     "example with other triangles": ("example_2.obj", None, "example_2.obj"),
     "degenerate rest triangle": ("rest.obj", "degenerate", "triangle"),
     "rest vertex 1e300": ("rest.obj", "huge", "rest.obj: triangle 0 is too large"),
-    "rest vertex NaN (blamed on the rest)": ("rest.obj", "nan", "rest.obj: has 131 vertices"),
+    "rest vertex NaN (blamed on the rest)": ("rest.obj", "nan", "rest.obj has such vertices, fix them there"),
     "rest triangle f 1 1 2 (blamed on the rest)": ("rest.obj", "repeat", "rest.obj: triangle 0 could not be read"),
 }
 

@@ -23,7 +23,8 @@ def test_sigterm_stops_a_pose_and_leaves_no_output(samples_dir, tmp_path):
     document["frames"] = [{"targets": {"tip": {"translate": [0, 0.001 * (k % 100), 0]}}} for k in range(200000)]
     (tmp_path / "in" / "long.json").write_text(json.dumps(document))
     out = tmp_path / "out"
-    run = subprocess.Popen([str(MESHIK), "pose", str(tmp_path / "in" / "long.json"), "--out", str(out), "--quiet"],
+    run = subprocess.Popen([str(MESHIK), "pose", str(tmp_path / "in" / "long.json"), "--out", str(out), "--quiet",
+                            "--format", "drc"],
                            stderr=subprocess.PIPE, text=True)
     time.sleep(2.5)  # reading 200,000 frames, or posing them: either way long before the outputs are complete
     assert run.poll() is None, "the job ended before it could be stopped"
