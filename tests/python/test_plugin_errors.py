@@ -206,3 +206,16 @@ def test_constraint_file_carries_targets_forward(grid_set, tmp_path):
     left = grid_set.apply_filter(POSE, targetsource="Constraint file", constraintfile=str(path), frame="up")
     posed = grid_set.mesh(left["layer_id"]).vertex_matrix()
     np.testing.assert_allclose(posed[[0, 5]], [[0, 0, 0.1], [0, 1, 0.1]], atol=1e-6)
+
+
+def test_a_pose_or_blend_beyond_double_precision_writes_no_layer(grid_set):
+    """Issue 12, defect 3: huge targets or weights are an error, never a NaN layer."""
+    layers = grid_set.mesh_number()
+    matrix = np.eye(4)
+    matrix[0, 3] = 1e300
+    matrix[1, 1] = matrix[2, 2] = 1.0
+    select_vertices(grid_set, [0, 24])
+    raises(grid_set, POSE, "finite range", targetsource="Handle transform", handletransform=matrix)
+    raises(grid_set, BLEND, "finite range", weights="1e308, 1e308")
+    assert grid_set.mesh_number() == layers
+    still_works(grid_set)
