@@ -62,7 +62,7 @@ plugin: setup $(BUILD)/build.ninja
 # The plugin in a real MeshLab GUI under Xvfb (builds that GUI the first time, ~10 minutes).
 # PRECISION=float (MeshLab releases) or double (as pymeshlab).
 PRECISION ?= float
-gui-check: setup $(BUILD)/build.ninja
+gui-check: build
 	BUILD=$(abspath $(BUILD)) JOBS=$(JOBS) scripts/gui_check.sh $(PRECISION)
 
 clean:
