@@ -72,7 +72,7 @@ std::vector<int> component_anchors(const VertexComponents& components) {
 }  // namespace
 
 ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,
-                       const ProgressCallback& progress)
+                       const ProgressCallback& progress, int threads)
     : impl_(std::make_unique<Impl>()) {
   validate_rest_mesh(rest);
   validate_examples(examples, rest.num_vertices);
@@ -99,7 +99,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
   const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
-  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress);
+  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
+  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
   int system_rows = 0;

@@ -2,12 +2,15 @@
 // consistent branches, stretches projected on the rest planes) and their batched blend.
 #include "feature_space.h"
 
+#include <algorithm>
+
 #include <string>
 
 #include "lane_math.h"
 #include "rotation_branches.h"
 #include "simd_clones.h"
 #include "so3.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -50,7 +53,7 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress,
-                                         bool consistent_branches) {
+                                         bool consistent_branches, int threads) {
   const int m = frames.num_triangles;
   const int k = static_cast<int>(examples.size());
   ExampleFeatures features;
@@ -67,18 +70,24 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
 
   std::vector<Eigen::Vector3d> logs(m);
   std::vector<Eigen::Matrix3d> rotations(m);
+  const int team = thread_count(threads);
   for (int i = 0; i < k; ++i) {
-    for (int j = 0; j < m; ++j) {
-      const Eigen::Matrix3d t = deformation_gradient(frames, triangles, examples[i], j);
-      const PolarDecomposition polar = polar_decomposition(t);
-      rotations[j] = polar.rotation;
-      logs[j] = so3_log(polar.rotation);
-      const auto basis = plane_basis_of(frames, j);
-      const size_t block = static_cast<size_t>(j / kLanes) * k + i;
-      store_rows((polar.stretch - Eigen::Matrix3d::Identity()) * basis,
-                 features.nonlinear.data() + 9 * kLanes * block, 3, j % kLanes);
-      store_rows((t - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
-                 0, j % kLanes);
+    // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
+    // every lane of a block), so the features are the same bits for any number of threads.
+#pragma omp parallel for schedule(static) num_threads(team)
+    for (int batch = 0; batch < features.num_batches; ++batch) {
+      for (int j = batch * kLanes; j < std::min(m, (batch + 1) * kLanes); ++j) {
+        const Eigen::Matrix3d t = deformation_gradient(frames, triangles, examples[i], j);
+        const PolarDecomposition polar = polar_decomposition(t);
+        rotations[j] = polar.rotation;
+        logs[j] = so3_log(polar.rotation);
+        const auto basis = plane_basis_of(frames, j);
+        const size_t block = static_cast<size_t>(batch) * k + i;
+        store_rows((polar.stretch - Eigen::Matrix3d::Identity()) * basis,
+                   features.nonlinear.data() + 9 * kLanes * block, 3, j % kLanes);
+        store_rows((t - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
+                   0, j % kLanes);
+      }
     }
     if (consistent_branches) choose_consistent_log_branches(adjacency, rotations, logs);
     for (int j = 0; j < m; ++j) {

@@ -48,12 +48,13 @@ struct ExampleFeatures {
 
 // frames / adjacency / triangles (#F by 3): the rest mesh's; examples: #E pointers to #V by 3
 // positions. consistent_branches = false keeps the principal rotation logs (for comparison only).
-// progress(fraction) is called once per example.
+// progress(fraction) is called once per example, on the calling thread. threads: 0 = all cores,
+// n = n threads over blocks of triangles (see thread_count); the result is identical for any count.
 ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress = {},
-                                         bool consistent_branches = true);
+                                         bool consistent_branches = true, int threads = 0);
 
 // Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each.
 inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * kLanes; }

@@ -172,8 +172,18 @@ struct PySolver {
 
 // ExampleSet from rest_vertices (n, 3), faces (m, 3) and examples ((k, n, 3) or k arrays (n, 3)),
 // with the GIL released while the core validates and precomputes.
+// threads: None (all cores) or a count >= 1, as the core's ExampleSet takes it (0 = all cores).
+int thread_option(const nb::object& threads) {
+  if (threads.is_none()) return 0;
+  const long count = nb::cast<long>(threads);
+  if (count < 1 || count > 4096)
+    throw meshik::InputError("threads must be None (all cores) or a count from 1 to 4096, got " + std::to_string(count));
+  return static_cast<int>(count);
+}
+
 PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object& faces,
-                              const nb::object& examples, const nb::object& progress) {
+                              const nb::object& examples, const nb::object& progress, const nb::object& threads) {
+  const int thread_count = thread_option(threads);
   std::vector<double> rest = point_rows(rest_vertices, "rest_vertices", -1, "(n, 3)");
   const long n = static_cast<long>(rest.size() / 3);
   const nb::object face_array = as_numpy(faces);
@@ -202,7 +212,7 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
   for (const auto& pose : poses) pointers.push_back(pose.data());
   PythonProgress python_progress(progress);
   return PyExampleSet{python_progress.run([&](const meshik::ProgressCallback& callback) {
-    return std::make_shared<const meshik::ExampleSet>(view, pointers, callback);
+    return std::make_shared<const meshik::ExampleSet>(view, pointers, callback, thread_count);
   })};
 }
 
@@ -279,12 +289,13 @@ NB_MODULE(_core, m) {
                            "with their per-triangle features precomputed.")
       .def("__init__",
            [](PyExampleSet* self, const nb::object& rest_vertices, const nb::object& faces,
-              const nb::object& examples, const nb::object& progress) {
-             new (self) PyExampleSet(make_example_set(rest_vertices, faces, examples, progress));
+              const nb::object& examples, const nb::object& progress, const nb::object& threads) {
+             new (self) PyExampleSet(make_example_set(rest_vertices, faces, examples, progress, threads));
            },
-           "rest_vertices"_a, "faces"_a, "examples"_a, "progress"_a = nb::none(),
+           "rest_vertices"_a, "faces"_a, "examples"_a, "progress"_a = nb::none(), "threads"_a = nb::none(),
            "rest_vertices: (n, 3); faces: (m, 3) integer; examples: (k, n, 3) or a sequence of "
-           "(n, 3) arrays; progress: optional callable(fraction, stage) returning False to cancel.")
+           "(n, 3) arrays; progress: optional callable(fraction, stage) returning False to cancel; "
+           "threads: None for all cores or a count (the features are the same bits for any count).")
       .def("blend",
            [](const PyExampleSet& self, const nb::object& weights, const std::string& space) {
              return blend(*self.core, weights, parse_feature_space(space));
@@ -320,15 +331,16 @@ NB_MODULE(_core, m) {
            [](PySolver* self, const nb::object& rest_vertices, const nb::object& faces,
               const nb::object& examples, const nb::object& handles,
               const std::string& feature_space, double weight_regularization, int max_iterations,
-              double tolerance, const nb::object& progress) {
-             PyExampleSet set = make_example_set(rest_vertices, faces, examples, progress);
+              double tolerance, const nb::object& progress, const nb::object& threads) {
+             PyExampleSet set = make_example_set(rest_vertices, faces, examples, progress, threads);
              new (self) PySolver(make_solver(std::move(set.core), handles, feature_space,
                                              weight_regularization, max_iterations, tolerance,
                                              progress));
            },
            "rest_vertices"_a, "faces"_a, "examples"_a, "handles"_a,
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
-           "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none())
+           "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none(),
+           "threads"_a = nb::none())
       .def_static(
           "from_example_set",
           [](const PyExampleSet& set, const nb::object& handles, const std::string& feature_space,

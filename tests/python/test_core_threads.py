@@ -1,0 +1,34 @@
+"""The example-set precompute on several threads gives the same bits as on one (issue 13)."""
+import numpy as np
+import pytest
+
+import meshik
+from meshik.meshio import load_example_set
+
+
+@pytest.fixture(scope="module")
+def limb(samples_dir):
+    folder = samples_dir / "limb"
+    return load_example_set(folder / "rest.obj", sorted(folder.glob("example_*.obj")))
+
+
+def test_any_thread_count_gives_identical_features(limb):
+    weights = np.linspace(0.2, -0.1, len(limb.examples))
+    handles = [0, len(limb.rest) // 2, len(limb.rest) - 1]
+    targets = limb.rest[handles] + [[0, 0, 0], [0.1, 0.2, 0], [0.3, 0, 0.1]]
+    results = {}
+    for threads in (1, 2, 3, 4, None):
+        example_set = meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples), threads=threads)
+        solver = meshik.Solver.from_example_set(example_set, handles)
+        result = solver.solve(targets)
+        results[threads] = (example_set.blend(weights), example_set.blend(weights, feature_space="linear"),
+                            result.vertices, result.weights)
+    for threads, arrays in results.items():
+        for one, other in zip(results[1], arrays):
+            assert np.array_equal(one, other), f"threads={threads} differs from threads=1"
+
+
+@pytest.mark.parametrize("threads", [0, -1, 5000])
+def test_a_bad_thread_count_is_refused(limb, threads):
+    with pytest.raises(meshik.InputError, match="threads"):
+        meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples), threads=threads)
