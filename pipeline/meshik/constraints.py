@@ -22,6 +22,7 @@ import numpy as np
 
 from meshik import _constraints
 from meshik.errors import ConstraintError
+from meshik.safe_paths import utf8_name
 
 FORMAT_NAME = "meshik-constraints"
 FORMAT_VERSION = 1
@@ -112,15 +113,6 @@ class ResolvedConstraints:
     frame_names: Tuple[str, ...]
 
 
-def _utf8_name(path: Path) -> str:
-    """`path` as text for the library; ConstraintError when the name is not valid UTF-8."""
-    try:
-        str(path).encode("utf-8")
-    except UnicodeEncodeError:
-        raise ConstraintError(f"{path}: the file name is not valid UTF-8: rename the file") from None
-    return str(path)
-
-
 def load(path) -> ConstraintSet:
     """Read and validate a constraint file. Raises ConstraintError naming the file and JSON path.
 
@@ -128,7 +120,7 @@ def load(path) -> ConstraintSet:
     the constraint file's folder). Handle indices are range-checked later, by resolve().
     """
     path = Path(path)
-    return _constraint_set(_constraints.read(_utf8_name(path)), path)
+    return _constraint_set(_constraints.read(utf8_name(path, ConstraintError)), path)
 
 
 def loads(text: str, source) -> ConstraintSet:
@@ -144,7 +136,7 @@ def loads(text: str, source) -> ConstraintSet:
 def validate(path) -> List[str]:
     """Every problem of the constraint file at `path` (format and mesh files), one message each; [] when good."""
     try:
-        return list(_constraints.validate(_utf8_name(Path(path)), True))
+        return list(_constraints.validate(utf8_name(path, ConstraintError), True))
     except ConstraintError as error:
         return [str(error)]
 
@@ -172,7 +164,7 @@ def write(path, rest: str, examples: Sequence[str], groups: Dict[str, Tuple[np.n
     """
     content = [(name, np.ascontiguousarray(vertices, dtype=np.int64).reshape(-1),
                 np.ascontiguousarray(targets, dtype=np.float64).reshape(-1, 3)) for name, (vertices, targets) in groups.items()]
-    _constraints.write(_utf8_name(Path(path)), rest, list(examples), content, frame_name)
+    _constraints.write(utf8_name(path, ConstraintError), rest, list(examples), content, frame_name)
 
 
 def _constraint_set(document, source: Path) -> ConstraintSet:

@@ -17,6 +17,7 @@ from typing import Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError
+from meshik.safe_paths import utf8_name
 
 # Mesh files larger than this are refused before reading (a bound on memory, and /dev/zero).
 MAX_INPUT_BYTES = 4 << 30
@@ -28,7 +29,7 @@ def check_input_file(path: Path, what: str) -> None:
     Says which: missing, a folder, a device or FIFO (never read: it could block or never end),
     or too large.
     """
-    _check_utf8_name(path)
+    utf8_name(path, MeshFileError)
     try:
         status = path.stat()
     except FileNotFoundError:
@@ -44,14 +45,6 @@ def check_input_file(path: Path, what: str) -> None:
                             f"accepted for a {what}")
     if not os.access(path, os.R_OK):
         raise MeshFileError(f"{path}: cannot read the {what}: permission denied")
-
-
-def _check_utf8_name(path: Path) -> None:
-    """MeshFileError when the file's name is not valid UTF-8 (MeshLab's readers and writers take UTF-8)."""
-    try:
-        str(path).encode("utf-8")
-    except UnicodeEncodeError:
-        raise MeshFileError(f"{path}: the file name is not valid UTF-8: rename the file") from None
 
 
 def isolated_load(path: Path) -> Tuple[np.ndarray, np.ndarray]:

@@ -12,6 +12,7 @@ import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
 from meshik.isolated_load import check_input_file, isolated_load
+from meshik.safe_paths import utf8_name
 
 # Attributes MeshLab would add to a saved file that a posed mesh does not have; each one is
 # dropped from the request when the format has no such parameter.
@@ -110,10 +111,7 @@ def save_mesh(path, vertices: np.ndarray, faces: np.ndarray) -> None:
     """
     import pymeshlab
 
-    try:
-        str(path).encode("utf-8")
-    except UnicodeEncodeError:
-        raise OutputError(f"{path}: the file name is not valid UTF-8: choose another name") from None
+    utf8_name(path, OutputError)
     if not np.isfinite(vertices).all():
         raise OutputError(f"{path}: refusing to write a mesh with non-finite coordinates")
     meshes = pymeshlab.MeshSet()

@@ -3,11 +3,12 @@
 Job names, frame names and output file names come from user files (a constraint file's stem, a
 frame's "name"); each is checked here before it is joined to a folder, so that no name ('..', '.',
 an absolute path, a separator, a NUL byte, a link pointing out) can make a run read, write or
-delete anything outside the folder it was given.
+delete anything outside the folder it was given. File names handed to libraries that take UTF-8
+(MeshLab, the constraint library) are checked here too (utf8_name).
 """
 from pathlib import Path
 
-from meshik.errors import OutputError
+from meshik.errors import OutputError, PipelineError
 
 
 def child_path(folder, name: str, what: str) -> Path:
@@ -37,3 +38,17 @@ def inside(folder, relative: str, what: str) -> Path:
     if target == base or base not in target.parents:
         raise OutputError(f"{what} {relative!r} leads outside {folder}")
     return Path(folder) / relative
+
+
+def utf8_name(path, error=PipelineError) -> str:
+    """`path` as text, for libraries that take UTF-8 file names (MeshLab, the constraint library).
+
+    Raises `error` (a PipelineError class) naming the file when its name is not valid UTF-8 (a
+    name the file system gave as bytes, which Python holds with surrogate escapes).
+    """
+    text = str(path)
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        raise error(f"{path}: the file name is not valid UTF-8: rename the file") from None
+    return text
