@@ -141,6 +141,9 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
+    parser.add_argument("--threads", type=_positive_int, default=None, metavar="N",
+                        help="threads of the example-set precompute (default: all cores for pose, one per batch "
+                             "worker); the outputs are the same for any count")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
 
 
@@ -150,7 +153,7 @@ def _run_pose(args) -> int:
 
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
-                      force=args.force)
+                      force=args.force, threads=args.threads)
     if report.get("skipped") and not args.quiet:
         print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
     return 0
@@ -171,7 +174,8 @@ def _run_batch(args) -> int:
     outcomes = run_batch(args.constraints, args.out, jobs=args.jobs, memory_limit=args.memory_limit or "auto",
                          scheduler=args.scheduler, retries=retries, cache_mb=args.cache_mb, quiet=args.quiet,
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
-                         feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force)
+                         feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
+                         threads=args.threads)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)

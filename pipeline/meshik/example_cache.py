@@ -29,14 +29,15 @@ class _Entry:
         self._features = None
         self._lock = threading.Lock()
 
-    def features(self):
-        """The meshik.ExampleSet of the meshes, built once. Raises meshik.InputError when the core
-        rejects the meshes."""
+    def features(self, threads: Optional[int] = None):
+        """The meshik.ExampleSet of the meshes, built once (on `threads` threads, None: all cores; the
+        features are the same for any count). Raises meshik.InputError when the core rejects the meshes."""
         import meshik
 
         with self._lock:
             if self._features is None:
-                self._features = meshik.ExampleSet(self.meshes.rest, self.meshes.faces, list(self.meshes.examples))
+                self._features = meshik.ExampleSet(self.meshes.rest, self.meshes.faces, list(self.meshes.examples),
+                                                   threads=threads)
             return self._features
 
     def estimated_bytes(self) -> int:
@@ -56,11 +57,11 @@ class ExampleSetCache:
         self._lock = threading.Lock()
         self.hits = self.misses = 0
 
-    def get(self, rest_path, example_paths: Sequence) -> Tuple[ExampleMeshes, Callable[[], object]]:
+    def get(self, rest_path, example_paths: Sequence) -> Tuple[ExampleMeshes, Callable[[Optional[int]], object]]:
         """(meshes, features) of these files: meshes as load_example_set returns them (with the paths
-        given here), features() their meshik.ExampleSet, built at most once per cached entry.
+        given here), features(threads) their meshik.ExampleSet, built at most once per cached entry.
         Files whose contents were seen before come from memory. Raises MeshFileError as
-        load_example_set does, meshik.InputError from features() when the core rejects the meshes."""
+        load_example_set does, meshik.InputError from features(threads) when the core rejects the meshes."""
         rest_path, example_paths = Path(rest_path), tuple(Path(p) for p in example_paths)
         key = content_key([rest_path, *example_paths])
         with self._lock:

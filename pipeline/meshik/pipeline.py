@@ -36,7 +36,7 @@ GENERATOR = "MeshIK pipeline"
 def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = None, simplifier: str = "fast",
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
-             stream: Optional[TextIO] = None, example_cache=None) -> Dict[str, Any]:
+             stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -44,7 +44,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
     force: run even when out_dir already holds the complete outputs of the same job;
-    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from.
+    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
+    threads: for the example-set precompute (None: all cores; the outputs are the same for any count).
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """
@@ -88,6 +89,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
         posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
                                context=str(constraint_set.rest), features=features if simplified is None else None,
+                               threads=threads,
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
 

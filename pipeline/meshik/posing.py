@@ -29,16 +29,17 @@ class PosedAnimation:
 
 def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarray, solver_options: Dict[str, Any],
                    on_frame: Optional[Callable[[], None]] = None, context: str = "",
-                   features: Optional[Callable[[], Any]] = None,
-                   frame_labels: Optional[Sequence[str]] = None) -> PosedAnimation:
+                   features: Optional[Callable[[Optional[int]], Any]] = None,
+                   frame_labels: Optional[Sequence[str]] = None, threads: Optional[int] = None) -> PosedAnimation:
     """Solve every frame for one handle set: the system is factored once, each frame starts from
     the previous frame's weights.
 
     handles: #H vertex indices; targets: #frames by #H by 3; solver_options: keyword arguments of
     meshik.Solver (feature_space, weight_regularization, max_iterations, tolerance); on_frame: called
     after each frame; context: prefix for error messages about the meshes (e.g. the rest mesh's file);
-    features: returns the meshes' meshik.ExampleSet (e.g. kept by an ExampleSetCache); by default it is
-    built here; frame_labels: #frames prefixes for a frame's errors (default "frame <index>").
+    features(threads): returns the meshes' meshik.ExampleSet (e.g. kept by an ExampleSetCache); by
+    default it is built here; frame_labels: #frames prefixes for a frame's errors (default "frame
+    <index>"); threads: for the example-set precompute (None: all cores).
     Raises PipelineError when the core rejects the input or a frame's pose (e.g. targets so far out
     that the pose overflows), naming the frame.
     """
@@ -46,8 +47,8 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
 
     start = time.perf_counter()
     try:
-        example_set = features() if features is not None else \
-            meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples))
+        example_set = features(threads) if features is not None else \
+            meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples), threads=threads)
         solver = meshik.Solver.from_example_set(example_set, np.asarray(handles, dtype=np.int64), **solver_options)
     except meshik.InputError as error:
         raise PipelineError(f"{context}: {error}" if context else str(error)) from None

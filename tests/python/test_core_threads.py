@@ -32,3 +32,16 @@ def test_any_thread_count_gives_identical_features(limb):
 def test_a_bad_thread_count_is_refused(limb, threads):
     with pytest.raises(meshik.InputError, match="threads"):
         meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples), threads=threads)
+
+
+def test_pose_outputs_are_the_same_bytes_for_any_thread_count(samples_dir, tmp_path):
+    from meshik.cli import main
+
+    outputs = {}
+    for threads in ("1", "2"):
+        out = tmp_path / threads
+        assert main(["pose", str(samples_dir / "limb" / "animation.json"), "--out", str(out), "--quiet",
+                     "--threads", threads, "--format", "drc,ply"]) == 0
+        outputs[threads] = {p.relative_to(out): p.read_bytes() for p in sorted(out.rglob("*")) if p.is_file()
+                            and p.name != "report.json"}
+    assert outputs["1"] == outputs["2"] and len(outputs["1"]) > 10
