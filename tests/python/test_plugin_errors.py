@@ -219,3 +219,13 @@ def test_a_pose_or_blend_beyond_double_precision_writes_no_layer(grid_set):
     raises(grid_set, BLEND, "finite range", weights="1e308, 1e308")
     assert grid_set.mesh_number() == layers
     still_works(grid_set)
+
+
+def test_a_component_without_a_handle_is_refused_like_the_cli():
+    """Issue 12, defect 9: two separate triangles, a handle on one only."""
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [5, 0, 0], [6, 0, 0], [5, 1, 0]], dtype=float)
+    faces = np.array([[0, 1, 2], [3, 4, 5]])
+    example = vertices + np.array([0.0, 0.0, 0.1]) * np.arange(6)[:, None]
+    ms = mesh_set(vertices, faces, [example])
+    select_vertices(ms, [0])
+    raises(ms, POSE, "connected component containing vertex 3", "has no handle", targetsource="Handle transform")
