@@ -37,7 +37,8 @@ def run_job(constraints: str, destination: str, options: Dict[str, Any], cache_b
     start = time.perf_counter()
     _maybe_kill_worker(Path(destination).name)
     try:
-        report = pose_job(constraints, destination, quiet=True, example_cache=example_cache(cache_bytes), **options)
+        report = pose_job(constraints, destination, quiet=True, example_cache=example_cache(cache_bytes),
+                          within=Path(destination).parent, **options)
         status, reason, frames = ("skipped" if report.get("skipped") else "done"), None, report.get("frame_count", 0)
     except ValueError as error:  # PipelineError and the core's InputError: bad input, the message says why
         status, reason, frames = "failed", str(error), 0

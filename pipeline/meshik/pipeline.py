@@ -36,7 +36,8 @@ GENERATOR = "MeshIK pipeline"
 def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = None, simplifier: str = "fast",
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
-             stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None) -> Dict[str, Any]:
+             stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
+             within=None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -45,7 +46,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
-    threads: for the example-set precompute (None: all cores; the outputs are the same for any count).
+    threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
+    within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
+            is then replaced in one folder swap (meshik.staging).
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """
@@ -99,7 +102,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         _check_grid_resolution(constraints_path, grid, posed_meshes.rest, posed.vertices, resolved.frame_names,
                                resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept])
     writing = stage_progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
-    with StagedOutput(out_dir) as staged, writing as advance:
+    with StagedOutput(out_dir, within) as staged, writing as advance:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
                 simplified is not None, grid, constraint_set.fps, formats, advance)
         clock.lap("export")

@@ -1,12 +1,20 @@
 """Outputs that appear complete or not at all.
 
-A job writes its files into a hidden staging folder inside the destination; commit() then takes
-the previous report.json out of place, moves each file to its final name (an atomic rename on one
-file system) and puts the new report.json in place last. So whenever report.json is present, every
-file it lists has exactly the bytes it records (their SHA-256): a run killed while it commits
-leaves no report (the folder reads as incomplete, never as the old result beside new files), and
-the next run completes it. An interrupted job leaves only the hidden staging folder, which the
-next run in that destination removes.
+A job writes its files into a hidden staging folder. How commit() moves them into place depends
+on where the destination lies:
+- Inside a folder that the run owns as a whole (a batch's --out, given as `within`): the staging
+  folder is the destination's sibling, holds the complete new result with report.json, and is
+  swapped with the destination in one directory-entry exchange (meshik.folder_swap). At every
+  instant the destination is the complete old result or the complete new one. Files in the old
+  folder that no run provably wrote (a user's notes, an edited output) are hard-linked across first.
+- Otherwise (`meshik pose --out FOLDER`: swapping FOLDER itself would write beside it, outside
+  --out), and where the file system cannot swap or hard-link: the staging folder lies inside the
+  destination, and commit() takes the previous report.json out of place, moves each file to its
+  final name (an atomic rename on one file system) and puts the new report.json in place last. So
+  whenever report.json is present, every file it lists has exactly the bytes it records (their
+  SHA-256): a run killed while it commits leaves no report (the folder reads as incomplete, never
+  as the old result beside new files), and the next run completes it.
+An interrupted job leaves only its hidden staging folder, which the next run there removes.
 
 A run removes an earlier output only when it can prove that it wrote it: the earlier report must
 list the file inside the destination with the SHA-256 of the bytes written then, the file on disk
@@ -22,6 +30,7 @@ from pathlib import Path
 from typing import Any, Dict, Iterable, Optional
 
 from meshik.errors import OutputError
+from meshik.folder_swap import SwapUnavailable, carry_over, swap_in
 from meshik.safe_paths import inside
 
 REPORT_NAME = "report.json"
@@ -74,20 +83,27 @@ def is_complete(destination: Path, job_key: str) -> bool:
 class StagedOutput:
     """A job's outputs, written under a hidden staging folder and moved into `destination` by commit().
 
+    within: a folder the run owns as a whole that contains `destination` (a batch's --out), or
+    None; when `destination` lies strictly inside it, commit() swaps the whole folder in at once.
     Use as a context manager: leaving the block without commit() (an error, an interrupt)
     deletes the staging folder (and the destination folder if this created it and it is empty),
     leaving the destination as it was.
     """
 
-    def __init__(self, destination: Path):
-        """Create `destination` (if needed) and a fresh staging folder in it; OutputError if impossible."""
+    def __init__(self, destination: Path, within: Optional[Path] = None):
+        """Create a fresh staging folder (and `destination` where files move in one by one); OutputError if impossible."""
         self.destination = Path(destination)
         check_writable(self.destination)
-        self.created = not self.destination.exists()
+        self.swapping = within is not None and self.destination.absolute().parent.is_relative_to(Path(within).absolute())
+        self.created = not self.destination.exists() and not self.swapping
+        home = self.destination.parent if self.swapping else self.destination
         try:
-            self.destination.mkdir(parents=True, exist_ok=True)
-            _remove_abandoned_staging(self.destination)
-            self.staging = self.destination / f"{_STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:8]}"
+            home.mkdir(parents=True, exist_ok=True)
+            _remove_abandoned_staging(home)
+            if self.destination.is_dir():
+                _remove_abandoned_staging(self.destination)
+            suffix = f"-{self.destination.name}" if self.swapping else ""
+            self.staging = home / f"{_STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:8]}{suffix}"
             self.staging.mkdir()
         except OSError as error:
             raise OutputError(f"{self.destination}: cannot create the output folder: {error.strerror or error}") from None
@@ -107,6 +123,8 @@ class StagedOutput:
     def path(self, relative: str) -> Path:
         """Staging path for an output written by another library; call added(relative) once written."""
         inside(self.destination, relative, "output file")
+        if relative in (REPORT_NAME, _REPLACED_REPORT_NAME):
+            raise OutputError(f"{self.destination}: '{relative}' is a name the run keeps for itself")
         path = inside(self.staging, relative, "output file")
         path.parent.mkdir(parents=True, exist_ok=True)
         return path
@@ -118,8 +136,9 @@ class StagedOutput:
         self.digests[relative] = _file_sha256(path)
 
     def commit(self, report: Dict[str, Any], inputs: Iterable = ()) -> Dict[str, Any]:
-        """Move every file into place, then write report.json last, with "outputs" (name -> bytes)
-        and "output_sha256" (name -> SHA-256 of its bytes).
+        """Put every file and report.json in place, the report with "outputs" (name -> bytes) and
+        "output_sha256" (name -> SHA-256 of its bytes): by one folder swap where possible (see the
+        module's note), else file by file with the report last.
 
         An output of the previous report that is not produced now is removed only when it provably
         came from an earlier run (see the module's note); `inputs` are this run's input files, never
@@ -129,34 +148,57 @@ class StagedOutput:
         previous = read_report(self.destination) or _read_json(replaced) or {}
         report = dict(report, outputs=dict(sorted(self.files.items())),
                       output_sha256=dict(sorted(self.digests.items())))
-        staged_report = self.staging / REPORT_NAME
         try:
-            staged_report.write_text(json.dumps(report, indent=1))
-            # From here until the new report is in place the folder has no report.json: a run killed
-            # meanwhile leaves it marked incomplete (never an old report beside new files), and the
-            # next run still finds the old report's list under _REPLACED_REPORT_NAME.
-            if (self.destination / REPORT_NAME).exists():
-                os.replace(self.destination / REPORT_NAME, replaced)
-            for relative in self.files:
-                target = self.destination / relative
-                target.parent.mkdir(parents=True, exist_ok=True)
-                os.replace(self.staging / relative, target)
-            for stale in _provably_written(self.destination, previous, set(self.files), inputs):
-                stale.unlink()
-            os.replace(staged_report, self.destination / REPORT_NAME)
-            replaced.unlink(missing_ok=True)
+            (self.staging / REPORT_NAME).write_text(json.dumps(report, indent=1))
+            stale = _provably_written(self.destination, previous, set(self.files), inputs)
+            if not (self.swapping and self._swap(stale)):
+                self._move_file_by_file(stale)
         except OSError as error:
             raise OutputError(f"{self.destination}: cannot move the outputs into place: {error.strerror or error}") from None
         finally:
             shutil.rmtree(self.staging, ignore_errors=True)
         return report
 
+    def _swap(self, stale: Iterable[Path]) -> bool:
+        """Swap the staging folder (with what the old folder must keep linked in) for the destination.
+
+        Returns False, having changed nothing in the destination, where the file system cannot do
+        it; the old folder then lies at the staging folder's name, removed by commit().
+        """
+        dropped = {path.relative_to(self.destination).as_posix() for path in stale}
+        dropped |= set(self.files) | {REPORT_NAME, _REPLACED_REPORT_NAME}
+        try:
+            if self.destination.is_dir():
+                carry_over(self.destination, self.staging, dropped.__contains__)
+            swap_in(self.staging, self.destination)
+        except SwapUnavailable:
+            return False
+        return True
+
+    def _move_file_by_file(self, stale: Iterable[Path]) -> None:
+        """Move the staged files into the destination one by one and the staged report.json last."""
+        replaced = self.destination / _REPLACED_REPORT_NAME
+        self.destination.mkdir(parents=True, exist_ok=True)
+        # From here until the new report is in place the folder has no report.json: a run killed
+        # meanwhile leaves it marked incomplete (never an old report beside new files), and the
+        # next run still finds the old report's list under _REPLACED_REPORT_NAME.
+        if (self.destination / REPORT_NAME).exists():
+            os.replace(self.destination / REPORT_NAME, replaced)
+        for relative in self.files:
+            target = self.destination / relative
+            target.parent.mkdir(parents=True, exist_ok=True)
+            os.replace(self.staging / relative, target)
+        for path in stale:
+            path.unlink()
+        os.replace(self.staging / REPORT_NAME, self.destination / REPORT_NAME)
+        replaced.unlink(missing_ok=True)
+
     def __enter__(self) -> "StagedOutput":
         return self
 
     def __exit__(self, *exc_info) -> None:
         shutil.rmtree(self.staging, ignore_errors=True)
-        if self.created and not any(self.destination.iterdir()):
+        if self.created and self.destination.is_dir() and not any(self.destination.iterdir()):
             self.destination.rmdir()
 
 
