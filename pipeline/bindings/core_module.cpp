@@ -7,6 +7,7 @@
 #include <nanobind/stl/string.h>
 
 #include <climits>
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <string>
@@ -239,7 +240,12 @@ PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::ob
 std::vector<double> weight_values(const nb::handle& value, const char* name, int k) {
   const nb::object array = as_numpy(value);
   check_shape(array, name, {k}, "(" + std::to_string(k) + ",)");
-  return float_values(array, name);
+  std::vector<double> weights = float_values(array, name);
+  for (size_t i = 0; i < weights.size(); ++i)
+    if (!std::isfinite(weights[i]))
+      throw meshik::InputError(std::string(name) + "[" + std::to_string(i) + "] (the weight of example " +
+                               std::to_string(i) + ") is " + text_of(array[nb::int_(i)]) + ", not a finite number");
+  return weights;
 }
 
 // set.blend(weights (k,)) as an (n, 3) array.

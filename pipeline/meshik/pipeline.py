@@ -179,8 +179,7 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
         else:
             for frame, vertices in zip(frame_names, posed.vertices):
                 relative = f"frames/{frame}.{fmt}"
-                save_mesh(staged.path(relative), vertices, faces)
-                staged.added(relative)
+                staged.save(relative, lambda path: save_mesh(path, vertices, faces))
                 advance()
             if simplified and "vertex_ids.txt" not in staged.files:
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())

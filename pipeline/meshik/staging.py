@@ -27,7 +27,7 @@ import os
 import shutil
 import uuid
 from pathlib import Path
-from typing import Any, Dict, Iterable, Optional
+from typing import Any, Callable, Dict, Iterable, Optional
 
 from meshik.errors import OutputError
 from meshik.folder_swap import SwapUnavailable, carry_over, swap_in
@@ -113,27 +113,38 @@ class StagedOutput:
     def write(self, relative: str, data: bytes) -> None:
         """Write the output file `relative` (e.g. "frames/0001.drc") into the staging folder.
 
-        OutputError when `relative` is not a path inside the destination (e.g. a frame named '..').
+        OutputError when `relative` is not a path inside the destination (e.g. a frame named '..')
+        or the file cannot be written (a full disk), naming the destination and `relative`.
         """
-        path = self.path(relative)
-        path.write_bytes(data)
-        self.files[relative] = len(data)
-        self.digests[relative] = hashlib.sha256(data).hexdigest()
+        self.save(relative, lambda path: path.write_bytes(data))
 
-    def path(self, relative: str) -> Path:
-        """Staging path for an output written by another library; call added(relative) once written."""
+    def save(self, relative: str, writer: Callable[[Path], Any]) -> None:
+        """Write the output file `relative` with writer(path) (e.g. another library's mesh writer).
+
+        Errors as write(): a failed writer (OSError, or a ValueError from a library) becomes one
+        OutputError naming the destination, `relative`, the reason and the space left on that disk.
+        """
+        path = self._staging_path(relative)
+        try:
+            writer(path)
+        except (OSError, ValueError) as error:
+            if isinstance(error, OSError):
+                reason = f"cannot write {relative}: {error.strerror or error}"
+            else:
+                reason = f"{relative}: {str(error).removeprefix(f'{path}: ').replace(str(path), relative)}"
+            raise OutputError(f"{self.destination}: {reason} ({_free_bytes(self.staging)} bytes free on that disk)") from None
+        self.files[relative] = path.stat().st_size
+        self.digests[relative] = _file_sha256(path)
+
+    def _staging_path(self, relative: str) -> Path:
+        """Where output `relative` is written in the staging folder (its folder created); OutputError if it
+        is no path inside the destination or a name the run keeps for itself."""
         inside(self.destination, relative, "output file")
         if relative in (REPORT_NAME, _REPLACED_REPORT_NAME):
             raise OutputError(f"{self.destination}: '{relative}' is a name the run keeps for itself")
         path = inside(self.staging, relative, "output file")
         path.parent.mkdir(parents=True, exist_ok=True)
         return path
-
-    def added(self, relative: str) -> None:
-        """Record a file written at path(relative) by other means."""
-        path = self.staging / relative
-        self.files[relative] = path.stat().st_size
-        self.digests[relative] = _file_sha256(path)
 
     def commit(self, report: Dict[str, Any], inputs: Iterable = ()) -> Dict[str, Any]:
         """Put every file and report.json in place, the report with "outputs" (name -> bytes) and
@@ -226,6 +237,15 @@ def _provably_written(destination: Path, previous: Dict[str, Any], kept: set, in
         if _file_sha256(path) == digest:
             stale.append(path)
     return stale
+
+
+def _free_bytes(folder: Path) -> int:
+    """Bytes an unprivileged writer may still use on the file system of `folder` (0 when unknown)."""
+    try:
+        status = os.statvfs(folder)
+    except OSError:
+        return 0
+    return status.f_bavail * status.f_frsize
 
 
 def _file_id(path: Path):

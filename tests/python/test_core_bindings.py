@@ -133,7 +133,9 @@ def test_warm_start_and_energies(tube):
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES, feature_space="cubic"), "feature_space must be"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(np.zeros((3, 3))), r"targets must have shape \(8, 3\)"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(t[0][HANDLES], [1.0]), r"initial_weights must have shape \(3,\)"),
-    (lambda t: meshik.ExampleSet(t[0], t[1], t[2]).blend([np.nan, 0, 0]), "weight 0 is not finite"),
+    (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(t[0][HANDLES], [1.0, np.inf, 0.0]),
+     r"initial_weights\[1\] \(the weight of example 1\) is inf, not a finite number"),
+    (lambda t: meshik.ExampleSet(t[0], t[1], t[2]).blend([np.nan, 0, 0]), r"weights\[0\] \(the weight of example 0\) is nan, not a finite number"),
 ])
 def test_bad_input_raises_input_error_naming_it(tube, call, message):
     with pytest.raises(meshik.InputError, match=message):
