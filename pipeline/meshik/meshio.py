@@ -12,6 +12,7 @@ import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
 from meshik.isolated_load import check_input_file, isolated_load
+from meshik.obj_text import check_obj_vertices
 from meshik.safe_paths import utf8_name
 
 # Attributes MeshLab would add to a saved file that a posed mesh does not have; each one is
@@ -41,11 +42,14 @@ def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
     """(#V by 3 float64 positions, #F by 3 int64 triangles) of a mesh file. Raises MeshFileError.
 
     The file is read by MeshLab's readers in a forked child process (see isolated_load), since some
-    of them crash on malformed files (an OBJ or OFF face index out of range). MeshLab's readers drop
+    of them crash on malformed files (an OBJ or OFF face index out of range); an OBJ's vertex lines are
+    checked first (meshik.obj_text: the reader reads a garbled coordinate as 0). MeshLab's readers drop
     vertices with non-finite coordinates (and their triangles) while loading.
     """
     path = Path(path)
     check_input_file(path, "mesh file")
+    if path.suffix.lower() == ".obj":
+        check_obj_vertices(path)
     vertices, faces = isolated_load(path)
     if len(faces) == 0:
         raise MeshFileError(f"{path}: the mesh has no triangles")

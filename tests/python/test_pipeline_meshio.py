@@ -60,8 +60,11 @@ def test_missing_and_unreadable_files(tmp_path):
     with pytest.raises(MeshFileError, match="none.obj: mesh file not found"):
         load_mesh(tmp_path / "none.obj")
     (tmp_path / "broken.obj").write_text("v 1 2\nf 1 2 3\n")
-    with pytest.raises(MeshFileError, match="broken.obj: cannot read the mesh"):
+    with pytest.raises(MeshFileError, match="broken.obj: line 1: vertex coordinates are not three numbers: 'v 1 2'"):
         load_mesh(tmp_path / "broken.obj")
+    (tmp_path / "broken.ply").write_text("ply\nformat nonsense 1.0\nend_header\n")
+    with pytest.raises(MeshFileError, match="broken.ply: cannot read the mesh"):
+        load_mesh(tmp_path / "broken.ply")
     (tmp_path / "points.obj").write_text("v 0 0 0\nv 1 0 0\n")
     with pytest.raises(MeshFileError, match="points.obj: the mesh has no triangles"):
         load_mesh(tmp_path / "points.obj")

@@ -104,6 +104,20 @@ CONSTRAINT_CASES = {
                                                         "tip": {"translate": [1e6, 0, 0]}}), "frame 0003"),
     "target overflow": constraint_case(_frame(3, {"tip": {"translate": [1e300, 0, 0]}}), "frame 0003"),
     "targets a string": constraint_case(_frame(0, "up"), "targets"),
+    "rest name with NUL": constraint_case(_set("rest", "re\u0000st.obj"), 'the file name "re\\u0000st.obj" contains a NUL'),
+    "rest is the constraint file": constraint_case(_set("rest", "animation.json"), "cannot read the mesh"),
+    "frame name absolute": constraint_case(_frame(0, name="/etc/passwd"), "frames[0].name"),
+    "frame name with NUL": constraint_case(_frame(0, name="a\u0000b"), 'frames[0].name: "a\\u0000b" cannot be a file name'),
+    "frame name 300 characters": constraint_case(_frame(0, name="x" * 300), 'x..." cannot be a file name'),
+    "frame name with backslashes": constraint_case(_frame(0, name="..\\..\\x"), "frames[0].name"),
+    "frame name .": constraint_case(_frame(0, name="."), "frames[0].name"),
+    "fps zero": constraint_case(_set("fps", 0), "fps"),
+    "tolerance negative": constraint_case(_set("tolerance", -1), "tolerance"),
+    "frames an object": constraint_case(_set("frames", {"a": 1}), "frames: expected a list"),
+    "frame a number": constraint_case(_set("frames", [1]), "frames[0]: expected an object"),
+    "handles a list": constraint_case(_set("handles", [1, 2]), "handles: expected an object"),
+    "rotate degrees a string": constraint_case(_frame(0, {"tip": {"rotate": {"axis": [0, 0, 1], "degrees": "90"}}}),
+                                               "degrees"),
 }
 
 TEXT_CASES = {
@@ -117,6 +131,10 @@ TEXT_CASES = {
     "deep nesting": (b"[" * 100000 + b"]" * 100000, "animation.json"),
     "huge number": (b'{"format": "meshik-constraints", "version": 1e999}', "line 1"),
     "binary garbage": (bytes(range(256)) * 8, "animation.json"),
+    "UTF-16": ('{"format": "meshik-constraints"}'.encode("utf-16"), "not UTF-8"),
+    "a JSON string": (b'"hello"', "top level"),
+    "trailing garbage": (b'{"format": "meshik-constraints", "version": 1} xyz', "line 1"),
+    "white space only": (b"   \n\t ", "line 2"),
 }
 
 MESH_CASES = {
@@ -130,6 +148,10 @@ MESH_CASES = {
     "rest vertex 1e300": ("rest.obj", "huge", "rest.obj: triangle 0 is too large"),
     "rest vertex NaN (blamed on the rest)": ("rest.obj", "nan", "rest.obj has such vertices, fix them there"),
     "rest triangle f 1 1 2 (blamed on the rest)": ("rest.obj", "repeat", "rest.obj: triangle 0 could not be read"),
+    "vertex with letters (read as 0 by MeshLab)": ("rest.obj", "letters", "rest.obj: line 2: vertex coordinates are not"),
+    "vertex with two coordinates": ("example_1.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "example_1.obj: line 1"),
+    "face with two corners": ("rest.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "rest.obj: the mesh has no triangles"),
+    "negative face index beyond the start": ("rest.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9999\n", "rest.obj"),
 }
 
 ARGUMENT_CASES = {
@@ -141,6 +163,9 @@ ARGUMENT_CASES = {
     "--simplify nonsense": (["--simplify", "lots"], "simplify", 2),
     "--simplifier unknown": (["--simplifier", "magic"], "simplifier", 2),
     "--feature-space unknown": (["--feature-space", "spline"], "feature", 2),
+    "--threads 0": (["--threads", "0"], "threads", 2),
+    "--threads lots": (["--threads", "lots"], "threads", 2),
+    "--threads 2**40": (["--threads", str(2 ** 40)], "threads must be", 1),
 }
 
 
@@ -196,8 +221,8 @@ def _mesh_text(work, kind):
         faces = [line for line in rest if line.startswith("f ")]
         corners = [vertex_lines[int(c.split("/")[0]) - 1] for c in faces[0].split()[1:]]
         return "\n".join(rest[corners[0]] if i in corners[1:] else line for i, line in enumerate(rest)) + "\n"
-    if kind in ("huge", "nan"):
-        bad = "v 1e300 0 0" if kind == "huge" else "v nan 0 0"
+    if kind in ("huge", "nan", "letters"):
+        bad = {"huge": "v 1e300 0 0", "nan": "v nan 0 0", "letters": "v a b c"}[kind]
         return "\n".join(bad if i == vertex_lines[0] else line for i, line in enumerate(rest)) + "\n"
     if kind == "repeat":
         first_face = next(i for i, line in enumerate(rest) if line.startswith("f "))
@@ -211,7 +236,7 @@ def _mesh_text(work, kind):
 @pytest.mark.parametrize("case", sorted(MESH_CASES))
 def test_mesh_file_faults(work, case, capsys):
     name, text, expected = MESH_CASES[case]
-    if text in (None, "degenerate", "huge", "nan", "repeat"):
+    if text in (None, "degenerate", "huge", "nan", "letters", "repeat"):
         text = _mesh_text(work, text)
     (work / "in" / name).write_text(text)
     check_refused(work, ["pose", work / "in" / "animation.json", "--out", work / "out", "--quiet"], expected, capsys)

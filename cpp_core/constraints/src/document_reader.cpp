@@ -310,7 +310,7 @@ std::vector<Frame> read_frames(const JsonValue& value, const KnownGroups& groups
         frame.name = *text;
         const auto earlier = seen.find(frame.name);
         if (!is_frame_name(*text))
-          problems.add(name_path, "\"" + *text + "\" cannot be a file name: use letters, digits, \".\", \"_\", \"-\" (at most 100)");
+          problems.add(name_path, quoted_text(*text) + " cannot be a file name: use letters, digits, \".\", \"_\", \"-\" (at most 100)");
         else if (earlier != seen.end())
           problems.add(name_path, "\"" + frame.name + "\" is also the name of frames[" + std::to_string(earlier->second) + "]");
       }

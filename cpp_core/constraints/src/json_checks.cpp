@@ -56,12 +56,27 @@ std::string integer_text(const JsonValue& value) {
 
 std::string child_path(const std::string& path, const std::string& key) {
   if (is_identifier(key)) return path.empty() ? key : path + "." + key;
-  std::string quoted;
-  for (char c : key) {
-    if (c == '\\' || c == '"') quoted += '\\';
-    quoted += c;
+  return path + "[" + quoted_text(key, key.size()) + "]";
+}
+
+std::string quoted_text(const std::string& text, std::size_t max_characters) {
+  std::string quoted = "\"";
+  std::size_t characters = 0;
+  for (char c : text) {
+    const bool starts_character = (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    if (starts_character && characters++ == max_characters) return quoted + "...\"";
+    if (c == '\\' || c == '"') {
+      quoted += '\\';
+      quoted += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+      quoted += escaped;
+    } else {
+      quoted += c;
+    }
   }
-  return path + "[\"" + quoted + "\"]";
+  return quoted + "\"";
 }
 
 std::string child_path(const std::string& path, std::size_t index) {
@@ -91,7 +106,7 @@ std::string describe(const JsonValue& value) {
     case JsonValue::Kind::Number:
       return "the number " + (value.is_integer ? integer_text(value) : python_float_text(value.number));
     case JsonValue::Kind::String:
-      return character_count(value.text) <= 40 ? "\"" + value.text + "\"" : "a long string";
+      return character_count(value.text) <= 40 ? quoted_text(value.text) : "a long string";
     case JsonValue::Kind::List: return "a list of " + std::to_string(value.elements.size());
     case JsonValue::Kind::Object: return "an object";
   }

@@ -34,6 +34,10 @@ std::string child_path(const std::string& path, const std::string& key);
 // The JSON path of list element `index` under `path` (`path[index]`).
 std::string child_path(const std::string& path, std::size_t index);
 
+// `text` in double quotes for a one-line message: backslash, quote and control characters escaped
+// (a NUL as \u0000), cut to its first `max_characters` characters followed by "...".
+std::string quoted_text(const std::string& text, std::size_t max_characters = 40);
+
 // A short description of a JSON value for messages: "a list of 2", "the number 2.5", "null", ...
 std::string describe(const JsonValue& value);
 

@@ -2,6 +2,8 @@
 // names, found on disk.
 #include "mesh_files.h"
 
+#include "json_checks.h"
+
 #include <glob.h>
 
 #include <algorithm>
@@ -20,13 +22,14 @@ ConstraintError error_at(const ConstraintDocument& document, const std::string& 
 
 // `name` taken from `base` (unless absolute), made absolute with symbolic links resolved.
 fs::path absolute_path(const fs::path& base, const std::string& name) {
-  if (name.find('\0') != std::string::npos) throw fs::filesystem_error("embedded null byte", std::error_code());
   return fs::weakly_canonical(fs::absolute(base / name));
 }
 
 // The absolute path of the existing file `name`; ConstraintError at `path` otherwise.
 std::string existing_file(const ConstraintDocument& document, const fs::path& base, const std::string& name,
                           const std::string& path) {
+  if (name.find('\0') != std::string::npos)
+    throw error_at(document, path, "the file name " + quoted_text(name) + " contains a NUL character");
   fs::path resolved;
   bool found = false;
   try {
