@@ -10,7 +10,7 @@ from typing import List, Optional
 
 
 _FORMAT_HELP = ("comma-separated output formats: drc (Draco per frame, edgebreaker, original vertex ids kept), "
-                "glb (one glTF with a Draco base mesh, one morph target per frame and an animation), and any mesh "
+                "glb (one glTF: the rest mesh, one morph target per frame and an animation; see --glb), and any mesh "
                 "format pymeshlab writes, e.g. ply, obj, off, stl (one file per frame). Default: drc,glb")
 
 
@@ -140,6 +140,13 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
+    parser.add_argument("--glb", dest="glb", choices=("meshopt", "quantized", "draco"), default="meshopt",
+                        help="the .glb: meshopt (quantized positions and morph targets, EXT_meshopt_compression; "
+                             "default), quantized (KHR_mesh_quantization only: Blender before 5.2 and readers without "
+                             "a meshopt decoder) or draco (Draco base mesh, float32 morph targets)")
+    parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
+                        help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
+                             "(1 to 15, default 14)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
     parser.add_argument("--threads", type=_positive_int, default=None, metavar="N",
                         help="threads of the example-set precompute (default: all cores for pose, one per batch "
@@ -153,7 +160,7 @@ def _run_pose(args) -> int:
 
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
-                      force=args.force, threads=args.threads)
+                      force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits)
     if report.get("skipped") and not args.quiet:
         print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
     return 0
@@ -175,7 +182,7 @@ def _run_batch(args) -> int:
                          scheduler=args.scheduler, retries=retries, cache_mb=args.cache_mb, quiet=args.quiet,
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
-                         threads=args.threads)
+                         threads=args.threads, glb=args.glb, position_bits=args.position_bits)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
