@@ -29,11 +29,12 @@ class OutputErrors:
         self.drc_frames += 1
         self.drc_bytes += len(data)
 
-    def add_glb(self, name: str, variant: str, data: bytes) -> None:
-        """Record the .glb `name` of the given variant (its every frame is compared)."""
+    def add_glb(self, name: str, variant: str, data: bytes, grid) -> None:
+        """Record the .glb `name` of the given variant quantized on `grid` (a QuantizationGrid; every
+        frame is compared)."""
         animation = read_animation_glb(data)
         expected = self.frames[:, rows_of_ids(self.vertex_ids, animation.vertex_ids)]
-        self.glbs[name] = {"variant": variant, "bytes": len(data),
+        self.glbs[name] = {"variant": variant, "bytes": len(data), "position_bits": grid.bits, "grid_step": grid.step,
                            "max_position_error": self._error(animation.frames, expected)}
 
     def _error(self, decoded: np.ndarray, expected: np.ndarray) -> float:
@@ -46,7 +47,7 @@ class OutputErrors:
 
     def report(self) -> Dict[str, Dict[str, Any]]:
         """{"frames/*.drc": {files, bytes, max_position_error}, "<job>.glb": {variant, bytes,
-        max_position_error}}, only the outputs written."""
+        position_bits, grid_step, max_position_error}}, only the outputs written."""
         entries: Dict[str, Dict[str, Any]] = {}
         if self.drc_frames:
             entries["frames/*.drc"] = {"files": self.drc_frames, "bytes": self.drc_bytes,

@@ -202,7 +202,7 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 data = quantized_animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, glb_grid, fps, name,
                                                GENERATOR, meshopt=variant == "meshopt")
             staged.write(f"{name}.glb", data)
-            errors.add_glb(f"{name}.glb", variant, data)
+            errors.add_glb(f"{name}.glb", variant, data, glb_grid)
             advance()
         else:
             for frame, vertices in zip(frame_names, posed.vertices):
