@@ -1,4 +1,4 @@
-"""The `meshik` command: pose, batch, blend, info, validate. Exit status 0 on success, 1 when any job or
+"""The `meshik` command: pose, batch, blend, info, validate, view. Exit status 0 on success, 1 when any job or
 file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
 import argparse
 import json
@@ -119,6 +119,14 @@ def _parser() -> argparse.ArgumentParser:
     info.add_argument("--json", action="store_true", help="print the summaries as JSON")
     info.set_defaults(run=_run_info)
 
+    view = commands.add_parser("view", help="preview an output folder's animations in a web browser",
+                               description="Serve the folder on 127.0.0.1: a page that plays each exported .glb with "
+                                           "orbit controls and a frame slider, beside the contact sheet and report "
+                                           "(three.js served locally from the pinned npm packages; works offline).")
+    view.add_argument("folder", type=Path, metavar="OUT", help="an output folder of pose, batch or the demo")
+    view.add_argument("--port", type=_non_negative_int, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
+    view.set_defaults(run=_run_view)
+
     validate = commands.add_parser("validate", help="check constraint files and print every problem",
                                    description="Check constraint files (format, mesh files, handles on the rest mesh) "
                                                "and print every problem, one per line; exit status 1 when any file has one.")
@@ -223,6 +231,22 @@ def _run_validate(args) -> int:
     for path, problems in zip(args.files, results):
         print(f"{path}: OK" if not problems else "\n".join(problems))
     return 1 if any(results) else 0
+
+
+def _run_view(args) -> int:
+    """`meshik view`: serve the folder's preview until Ctrl+C; 0 when stopped."""
+    from meshik.view_server import preview_server
+
+    server = preview_server(args.folder, args.port)
+    host, port = server.server_address[:2]
+    print(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", flush=True)
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.server_close()
+    return 0
 
 
 def _positive_int(text: str) -> int:
