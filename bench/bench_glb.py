@@ -8,7 +8,6 @@ Bytes, gzip -9 bytes and each file's largest position error against the solver's
 a fraction of the animation's bounding-box diagonal); the meshopt file against the Draco one:
 <= 1/4 of its bytes, and gzipped <= 1/10 of them.
 """
-import argparse
 import gzip
 import pathlib
 import sys
@@ -21,17 +20,14 @@ VARIANTS = (("draco", "draco", 14), ("quantized", "quantized", 14), ("meshopt", 
 
 def main() -> int:
     """The table; exit status 1 when the meshopt file misses 1/4 of the Draco file's bytes."""
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--samples", type=pathlib.Path, help="sample_meshes/ (unused here)")
-    parser.add_argument("--data", type=pathlib.Path, required=True, help="../shared/data")
-    args = parser.parse_args()
-    horse, gallop = args.data / "horse-poses", args.data / "horse-gallop"
-    if not (horse.is_dir() and gallop.is_dir()):
-        print(f"bench_glb: skipped, {horse} or {gallop} not found")
-        return 0
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-    from bench_pipeline import gallop_constraints
+    from bench_pipeline import gallop_constraints, gallop_data
     from meshik.pipeline import pose_job
+
+    folders = gallop_data(__doc__, "bench_glb")
+    if folders is None:
+        return 0
+    horse, gallop = folders
 
     with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
         path = gallop_constraints(horse, gallop, pathlib.Path(scratch))

@@ -21,16 +21,26 @@ FLOOR_SECONDS = 3.0
 REPEATS = 3
 
 
-def main() -> int:
-    """Both tables; exit status 1 when the gallop misses the floor."""
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def gallop_data(description: str, name: str):
+    """(horse-poses, horse-gallop) folders from the --data argument of run_bench's command line, or
+    None (after saying that benchmark `name` is skipped) when they are absent."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--samples", type=pathlib.Path, help="sample_meshes/ (unused here)")
     parser.add_argument("--data", type=pathlib.Path, required=True, help="../shared/data")
     args = parser.parse_args()
     horse, gallop = args.data / "horse-poses", args.data / "horse-gallop"
     if not (horse.is_dir() and gallop.is_dir()):
-        print(f"bench_pipeline: skipped, {horse} or {gallop} not found")
+        print(f"{name}: skipped, {horse} or {gallop} not found")
+        return None
+    return horse, gallop
+
+
+def main() -> int:
+    """Both tables; exit status 1 when the gallop misses the floor."""
+    folders = gallop_data(__doc__, "bench_pipeline")
+    if folders is None:
         return 0
+    horse, gallop = folders
     with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
         ok = bench_gallop(horse, gallop, pathlib.Path(scratch))
     bench_simplifiers(horse)
