@@ -110,10 +110,11 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     everything = np.concatenate([posed.vertices, posed_meshes.rest[None]])
     grid = animation_grid(everything, quantization_bits)
     glb_grid = grid if glb == "draco" else animation_grid(everything, position_bits)
-    grids = ([grid] if {"drc", "glb"} & set(formats) else []) + ([glb_grid] if "glb" in formats else [])
-    for checked in grids:
+    grids = ([(grid, "--quantization-bits")] if {"drc", "glb"} & set(formats) else []) \
+        + ([(glb_grid, "--position-bits")] if "glb" in formats and glb != "draco" else [])
+    for checked, option in grids:
         _check_grid_resolution(constraints_path, checked, posed_meshes.rest, posed.vertices, resolved.frame_names,
-                               resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept])
+                               resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept], option)
     errors = OutputErrors(posed.vertices, vertex_ids)
     writing = stage_progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
     with StagedOutput(out_dir) as staged, writing as advance:
@@ -232,11 +233,13 @@ MAX_GRID_STEP = 0.01
 
 
 def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
-                           handles: np.ndarray, handle_rest: np.ndarray, targets: np.ndarray) -> None:
+                           handles: np.ndarray, handle_rest: np.ndarray, targets: np.ndarray,
+                           option: str = "--quantization-bits") -> None:
     """PipelineError unless the animation's shared grid resolves the mesh (step <= MAX_GRID_STEP of
     the rest diagonal). rest: #V by 3; frames: #frames by #V by 3; handles: #H vertex ids (as the
     user numbers them); handle_rest: #H by 3 their rest positions; targets: #frames by #H by 3. The message names the frame reaching farthest from the rest mesh and
-    its handle whose target lies farthest from that handle's rest position.
+    its handle whose target lies farthest from that handle's rest position, and the option that sets
+    the grid's bits.
     """
     diagonal = float(np.linalg.norm(rest.max(axis=0) - rest.min(axis=0))) or 1.0
     if grid.step <= MAX_GRID_STEP * diagonal:
@@ -247,7 +250,7 @@ def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndar
     where = f"frame {frame_names[frame]}, handle vertex {int(handles[handle])}" if len(handles) else f"frame {frame_names[frame]}"
     raise PipelineError(f"{source}: {where}: the animation spans {grid.range / diagonal:.3g} times the rest mesh's size, "
                         f"so its shared {grid.bits}-bit grid would blur every frame by {grid.step / diagonal:.2g} of the "
-                        "mesh's diagonal: move that frame's targets closer or raise --quantization-bits")
+                        f"mesh's diagonal: move that frame's targets closer or raise {option}")
 
 
 def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved, posed: PosedAnimation,

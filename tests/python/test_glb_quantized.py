@@ -92,5 +92,7 @@ def test_cli_glb_options_reach_the_file_and_the_report(samples_dir, tmp_path, ca
     assert document["nodes"][0]["scale"][0] == pytest.approx(entry["grid_step"])
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "16", "-q"]) == 1
     assert "position bits must be between 1 and 15, got 16" in capsys.readouterr().err
+    assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "3", "-q"]) == 1
+    assert "raise --position-bits" in capsys.readouterr().err  # a grid that would blur every frame
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--glb", "gzip"]) == 2
     assert not (tmp_path / "bad").exists()
