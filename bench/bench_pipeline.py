@@ -21,16 +21,26 @@ FLOOR_SECONDS = 3.0
 REPEATS = 3
 
 
-def main() -> int:
-    """Both tables; exit status 1 when the gallop misses the floor."""
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def gallop_data(description: str, name: str):
+    """(horse-poses, horse-gallop) folders from the --data argument of run_bench's command line, or
+    None (after saying that benchmark `name` is skipped) when they are absent."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--samples", type=pathlib.Path, help="sample_meshes/ (unused here)")
     parser.add_argument("--data", type=pathlib.Path, required=True, help="../shared/data")
     args = parser.parse_args()
     horse, gallop = args.data / "horse-poses", args.data / "horse-gallop"
     if not (horse.is_dir() and gallop.is_dir()):
-        print(f"bench_pipeline: skipped, {horse} or {gallop} not found")
+        print(f"{name}: skipped, {horse} or {gallop} not found")
+        return None
+    return horse, gallop
+
+
+def main() -> int:
+    """Both tables; exit status 1 when the gallop misses the floor."""
+    folders = gallop_data(__doc__, "bench_pipeline")
+    if folders is None:
         return 0
+    horse, gallop = folders
     with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
         ok = bench_gallop(horse, gallop, pathlib.Path(scratch))
     bench_simplifiers(horse)
@@ -43,11 +53,10 @@ def horse_files(horse: pathlib.Path):
     return horse / "reference.obj", examples
 
 
-def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Path) -> bool:
-    """Table 1; returns whether the end-to-end time is under the floor."""
-    from meshik import constraints
-    from meshik.meshio import load_example_set, load_mesh
-    from meshik.pipeline import pose_job
+def gallop_constraints(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Path) -> pathlib.Path:
+    """Writes scratch/gallop.json: the gallop's frames tracked by 12 farthest-point handle vertices
+    of horse-poses' rest mesh, horse-poses' examples; returns its path."""
+    from meshik.meshio import load_mesh
     from meshik.tracking import farthest_point_handles, tracking_document
 
     rest_path, example_paths = horse_files(horse)
@@ -55,7 +64,16 @@ def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Pat
     frames = {p.stem: load_mesh(p)[0] for p in sorted(gallop.glob("*.obj")) if p.stem.isdigit()}
     path = scratch / "gallop.json"
     path.write_text(json.dumps(tracking_document(path, rest_path, example_paths, frames, farthest_point_handles(rest, 12))))
+    return path
 
+
+def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Path) -> bool:
+    """Table 1; returns whether the end-to-end time is under the floor."""
+    from meshik import constraints
+    from meshik.meshio import load_example_set
+    from meshik.pipeline import pose_job
+
+    path = gallop_constraints(horse, gallop, scratch)
     constraint_set = constraints.load(path)
     meshes = load_example_set(constraint_set.rest, constraint_set.examples)
     resolved = constraints.resolve(constraint_set, meshes.rest)
@@ -72,7 +90,7 @@ def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Pat
     core_per_pose = min(core_per_pose)
 
     timings = report["timings"]
-    print(f"horse gallop: {len(frames)} frames, {len(meshes.rest)} vertices, 12 handle vertices, "
+    print(f"horse gallop: {len(resolved.frame_names)} frames, {len(meshes.rest)} vertices, 12 handle vertices, "
           f"{len(meshes.examples)} examples, best of {REPEATS}")
     print(f"{'stage':<34}{'seconds':>10}")
     for stage in ("load", "precompute", "solve_total", "export", "total"):

@@ -1,4 +1,4 @@
-"""The `meshik` command: pose, batch, blend, info, validate. Exit status 0 on success, 1 when any job or
+"""The `meshik` command: pose, batch, blend, info, validate, view. Exit status 0 on success, 1 when any job or
 file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
 import argparse
 import json
@@ -10,7 +10,7 @@ from typing import List, Optional
 
 
 _FORMAT_HELP = ("comma-separated output formats: drc (Draco per frame, edgebreaker, original vertex ids kept), "
-                "glb (one glTF with a Draco base mesh, one morph target per frame and an animation), and any mesh "
+                "glb (one glTF: the rest mesh, one morph target per frame and an animation; see --glb), and any mesh "
                 "format pymeshlab writes, e.g. ply, obj, off, stl (one file per frame). Default: drc,glb")
 
 
@@ -119,6 +119,14 @@ def _parser() -> argparse.ArgumentParser:
     info.add_argument("--json", action="store_true", help="print the summaries as JSON")
     info.set_defaults(run=_run_info)
 
+    view = commands.add_parser("view", help="preview an output folder's animations in a web browser",
+                               description="Serve the folder on 127.0.0.1: a page that plays each exported .glb with "
+                                           "orbit controls and a frame slider, beside the contact sheet and report "
+                                           "(three.js served locally from the pinned npm packages; works offline).")
+    view.add_argument("folder", type=Path, metavar="OUT", help="an output folder of pose, batch or the demo")
+    view.add_argument("--port", type=_non_negative_int, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
+    view.set_defaults(run=_run_view)
+
     validate = commands.add_parser("validate", help="check constraint files and print every problem",
                                    description="Check constraint files (format, mesh files, handles on the rest mesh) "
                                                "and print every problem, one per line; exit status 1 when any file has one.")
@@ -140,6 +148,13 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
+    parser.add_argument("--glb", dest="glb", choices=("meshopt", "quantized", "draco"), default="meshopt",
+                        help="the .glb: meshopt (quantized positions and morph targets, EXT_meshopt_compression; "
+                             "default), quantized (KHR_mesh_quantization only: Blender before 5.2 and readers without "
+                             "a meshopt decoder) or draco (Draco base mesh, float32 morph targets)")
+    parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
+                        help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
+                             "(1 to 15, default 14)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
     parser.add_argument("--threads", type=_positive_int, default=None, metavar="N",
                         help="threads of the example-set precompute (default: all cores for pose, one per batch "
@@ -153,7 +168,7 @@ def _run_pose(args) -> int:
 
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
-                      force=args.force, threads=args.threads)
+                      force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits)
     if report.get("skipped") and not args.quiet:
         print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
     return 0
@@ -175,7 +190,7 @@ def _run_batch(args) -> int:
                          scheduler=args.scheduler, retries=retries, cache_mb=args.cache_mb, quiet=args.quiet,
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
-                         threads=args.threads)
+                         threads=args.threads, glb=args.glb, position_bits=args.position_bits)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
@@ -216,6 +231,22 @@ def _run_validate(args) -> int:
     for path, problems in zip(args.files, results):
         print(f"{path}: OK" if not problems else "\n".join(problems))
     return 1 if any(results) else 0
+
+
+def _run_view(args) -> int:
+    """`meshik view`: serve the folder's preview until Ctrl+C; 0 when stopped."""
+    from meshik.view_server import preview_server
+
+    server = preview_server(args.folder, args.port)
+    host, port = server.server_address[:2]
+    print(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", flush=True)
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.server_close()
+    return 0
 
 
 def _positive_int(text: str) -> int:

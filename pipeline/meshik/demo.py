@@ -1,6 +1,7 @@
 """`make demo`: poses the shipped sample sets through their constraint-file animations with the
 batch pipeline (simplify, pose, compress), prints a summary table and writes, per sample, a PNG
-contact sheet rendered from the decoded Draco frames, so a person can look at the result.
+contact sheet rendered from the decoded Draco frames, and index.html, a page that plays every .glb
+(served by `meshik view demo_output`), so a person can look at the result.
 
 Usage: python -m meshik.demo [--out demo_output] [--samples sample_meshes]
 """
@@ -15,6 +16,7 @@ import numpy as np
 from meshik.contact_sheet import contact_sheet
 from meshik.export_draco import decode
 from meshik.pipeline import pose_job
+from meshik.viewer_site import write_viewer
 
 ROOT = Path(__file__).resolve().parents[2]
 # (sample, pose_job options): the limb is simplified first, the small sets are posed as they are.
@@ -67,7 +69,9 @@ def main(argv=None) -> int:
         rows.append(summary_row(sample, report))
     print()
     print_table(rows)
+    page = write_viewer(out)
     print(f"\noutputs and contact sheets in {out}/ (per sample: frames/*.drc, *.glb, report.json)")
+    print(f"preview page: {page} (serve it with: meshik view {out})")
     return 0
 
 

@@ -3,7 +3,9 @@
     report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
 
 Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
-"original_id" attribute), <job>.glb (Draco base mesh + one morph target per frame + animation),
+"original_id" attribute), <job>.glb (one morph target per frame + animation; glb="meshopt": positions
+and deltas quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same
+without meshopt, "draco": a Draco base mesh and float32 targets),
 frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
 output vertex, when simplified), and report.json (written last). Nothing is created when the
 input is bad; an interrupted job leaves no file under its final name; a job whose outputs are
@@ -22,6 +24,8 @@ from meshik import constraints as constraint_files
 from meshik.errors import PipelineError
 from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
 from meshik.export_gltf import animation_glb, glb_size_problem
+from meshik.export_gltf_quantized import MAX_POSITION_BITS, quantized_animation_glb
+from meshik.output_errors import OutputErrors
 from meshik.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
@@ -30,6 +34,8 @@ from meshik.staging import StagedOutput, check_writable, is_complete, read_repor
 
 REPORT_VERSION = 1
 DEFAULT_FORMATS = ("drc", "glb")
+GLB_VARIANTS = ("meshopt", "quantized", "draco")
+DEFAULT_POSITION_BITS = 14
 GENERATOR = "MeshIK pipeline"
 
 
@@ -37,7 +43,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
-             within=None) -> Dict[str, Any]:
+             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS, within=None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -47,6 +53,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
+    glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
+    meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
             is then replaced in one folder swap (meshik.staging).
     The returned report has "skipped": True when the job was already complete.
@@ -60,11 +68,15 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     _check_choice("feature space", feature_space, constraint_files.FEATURE_SPACES + (None,))
     if not 1 <= quantization_bits <= 30:
         raise PipelineError(f"quantization bits must be between 1 and 30, got {quantization_bits}")
+    _check_choice("glb variant", glb, GLB_VARIANTS)
+    if not 1 <= position_bits <= MAX_POSITION_BITS:
+        raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
     solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
-    key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits)
+    key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
+                  (glb, position_bits) if "glb" in formats else None)
     if not force and is_complete(out_dir, key):
         return dict(read_report(out_dir), skipped=True)
 
@@ -97,18 +109,24 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     clock.lap("pose")
 
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
-    grid = animation_grid(np.concatenate([posed.vertices, posed_meshes.rest[None]]), quantization_bits)
-    if {"drc", "glb"} & set(formats):
-        _check_grid_resolution(constraints_path, grid, posed_meshes.rest, posed.vertices, resolved.frame_names,
-                               resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept])
+    everything = np.concatenate([posed.vertices, posed_meshes.rest[None]])
+    grid = animation_grid(everything, quantization_bits)
+    glb_grid = grid if glb == "draco" else animation_grid(everything, position_bits)
+    grids = ([(grid, "--quantization-bits")] if {"drc", "glb"} & set(formats) else []) \
+        + ([(glb_grid, "--position-bits")] if "glb" in formats and glb != "draco" else [])
+    for checked, option in grids:
+        _check_grid_resolution(constraints_path, checked, posed_meshes.rest, posed.vertices, resolved.frame_names,
+                               resolved.handles[kept], posed_meshes.rest[handles], resolved.targets[:, kept], option)
+    errors = OutputErrors(posed.vertices, vertex_ids)
     writing = stage_progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
     with StagedOutput(out_dir, within) as staged, writing as advance:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
-                simplified is not None, grid, constraint_set.fps, formats, advance)
+                simplified is not None, grid, constraint_set.fps, formats, advance, (glb, glb_grid), errors)
         clock.lap("export")
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
                          posed, fit, grid, clock.laps)
+        report["compressed_outputs"] = errors.report()
         report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
@@ -132,14 +150,16 @@ def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
 
 
 def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict[str, Any], simplify, simplifier: str,
-            formats: Tuple[str, ...], quantization_bits: int) -> str:
+            formats: Tuple[str, ...], quantization_bits: int, glb_options=None) -> str:
     """A hash of everything a job's outputs depend on: the constraint file's bytes, the size and
-    modification time of every mesh file, and the options."""
+    modification time of every mesh file, and the options (glb_options: the .glb's variant and
+    position bits, None without a .glb)."""
     meshes = [constraint_set.rest, *constraint_set.examples]
     state = {
         "constraints": hashlib.sha256(constraint_set.source.read_bytes()).hexdigest(),
         "meshes": [[str(p), p.stat().st_size, p.stat().st_mtime_ns] for p in meshes],
-        "options": [solver_options, simplify, simplifier if simplify is not None else None, list(formats), quantization_bits],
+        "options": [solver_options, simplify, simplifier if simplify is not None else None, list(formats), quantization_bits]
+                   + ([list(glb_options)] if glb_options is not None else []),
         "report_version": REPORT_VERSION,
     }
     return hashlib.sha256(json.dumps(state, sort_keys=True, default=str).encode()).hexdigest()
@@ -165,16 +185,27 @@ def _target_triangles(simplify: Union[int, float], triangles: int) -> int:
 
 def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray, posed: PosedAnimation,
             frame_names: Sequence[str], vertex_ids: np.ndarray, simplified: bool, grid, fps: float,
-            formats: Tuple[str, ...], advance: Callable[[], None]) -> None:
-    """Write every requested format into the staging folder; advance() after each file."""
+            formats: Tuple[str, ...], advance: Callable[[], None], glb_choice: Tuple[str, Any],
+            errors: OutputErrors) -> None:
+    """Write every requested format into the staging folder; advance() after each file.
+    glb_choice: (variant, grid) of the .glb; errors: records the bytes and position error of the
+    .drc frames and the .glb."""
     for fmt in formats:
         if fmt == "drc":
             for frame, vertices in zip(frame_names, posed.vertices):
-                staged.write(f"frames/{frame}.drc", encode_frame(vertices, faces, vertex_ids, grid))
+                data = encode_frame(vertices, faces, vertex_ids, grid)
+                staged.write(f"frames/{frame}.drc", data)
+                errors.add_drc_frame(data)
                 advance()
         elif fmt == "glb":
-            staged.write(f"{name}.glb", animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, grid, fps,
-                                                      name, GENERATOR))
+            variant, glb_grid = glb_choice
+            if variant == "draco":
+                data = animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, grid, fps, name, GENERATOR)
+            else:
+                data = quantized_animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, glb_grid, fps, name,
+                                               GENERATOR, meshopt=variant == "meshopt")
+            staged.write(f"{name}.glb", data)
+            errors.add_glb(f"{name}.glb", variant, data, glb_grid)
             advance()
         else:
             for frame, vertices in zip(frame_names, posed.vertices):
@@ -203,11 +234,13 @@ MAX_GRID_STEP = 0.01
 
 
 def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
-                           handles: np.ndarray, handle_rest: np.ndarray, targets: np.ndarray) -> None:
+                           handles: np.ndarray, handle_rest: np.ndarray, targets: np.ndarray,
+                           option: str = "--quantization-bits") -> None:
     """PipelineError unless the animation's shared grid resolves the mesh (step <= MAX_GRID_STEP of
     the rest diagonal). rest: #V by 3; frames: #frames by #V by 3; handles: #H vertex ids (as the
     user numbers them); handle_rest: #H by 3 their rest positions; targets: #frames by #H by 3. The message names the frame reaching farthest from the rest mesh and
-    its handle whose target lies farthest from that handle's rest position.
+    its handle whose target lies farthest from that handle's rest position, and the option that sets
+    the grid's bits.
     """
     diagonal = float(np.linalg.norm(rest.max(axis=0) - rest.min(axis=0))) or 1.0
     if grid.step <= MAX_GRID_STEP * diagonal:
@@ -218,7 +251,7 @@ def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndar
     where = f"frame {frame_names[frame]}, handle vertex {int(handles[handle])}" if len(handles) else f"frame {frame_names[frame]}"
     raise PipelineError(f"{source}: {where}: the animation spans {grid.range / diagonal:.3g} times the rest mesh's size, "
                         f"so its shared {grid.bits}-bit grid would blur every frame by {grid.step / diagonal:.2g} of the "
-                        "mesh's diagonal: move that frame's targets closer or raise --quantization-bits")
+                        f"mesh's diagonal: move that frame's targets closer or raise {option}")
 
 
 def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved, posed: PosedAnimation,
