@@ -136,12 +136,9 @@ def _run(client, paths: List[Path], names: List[str], out_dir: Path, cache_mb: i
     """Submit every job whose name is a safe folder name, collect the outcomes as they complete,
     write the report. restart_on_stop: on an interrupt, restart the workers running our jobs
     (a cluster that outlives the batch); otherwise closing the batch's own cluster stops them."""
-    from meshik.worker_setup import prepare_workers
-
     outcomes: List[Optional[JobOutcome]] = [None] * len(paths)
     futures = {}
     with BatchDisplay(len(paths), quiet, stream) as display:
-        prepare_workers(client)  # before any job: pymeshlab must not be first imported on a job's thread
         if "dashboard" in client.scheduler_info().get("services", {}):
             display.note(f"Dask dashboard: {client.dashboard_link}")
         batch_id = uuid.uuid4().hex[:8]

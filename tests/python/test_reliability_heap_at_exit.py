@@ -1,6 +1,7 @@
-"""Batch worker processes leave with an intact heap: importing pymeshlab on a job's thread used to
-make every worker corrupt glibc's heap at exit ("malloc_consolidate(): unaligned fastbin chunk
-detected", SIGABRT) after its jobs were done (see meshik.worker_setup).
+"""Processes that ran the pipeline on a thread other than the main one leave with an intact heap:
+importing pymeshlab on a thread that ends first (a batch worker's job thread) used to make the
+process corrupt glibc's heap at exit ("malloc_consolidate(): unaligned fastbin chunk detected",
+SIGABRT) after its work was done (see meshik.meshlab_module).
 
 The corruption happens after Python has finished (in C++ static destructors), and glibc notices it
 only when something consolidates that heap afterwards, so by chance. To see it every time, the
@@ -56,6 +57,26 @@ def test_the_heap_check_sees_pymeshlab_imported_on_a_finished_thread(heap_check_
     script = "import threading\nt = threading.Thread(target=lambda: __import__('pymeshlab'))\nt.start(); t.join()\n"
     result = run_checked([sys.executable, "-c", script], heap_check_library, tmp_path)
     assert result.returncode == -6 and "malloc" in result.stderr, (result.returncode, result.stderr[-2000:])
+
+
+def test_pose_job_on_a_finished_thread_leaves_an_intact_heap(heap_check_library, samples_dir, tmp_path):
+    script = (f"import threading\nfrom meshik.pipeline import pose_job\n"
+              f"job = threading.Thread(target=pose_job, args=({str(samples_dir / 'bar' / 'animation.json')!r}, "
+              f"{str(tmp_path / 'out')!r}), kwargs=dict(quiet=True))\njob.start(); job.join()\n")
+    result = run_checked([sys.executable, "-c", script], heap_check_library, tmp_path)
+    assert result.returncode == 0 and "malloc" not in result.stderr, (result.returncode, result.stderr[-2000:])
+    assert HEAP_OK in result.stderr
+    assert (tmp_path / "out" / "report.json").is_file()
+
+
+def test_pymeshlab_is_imported_on_a_thread_that_outlives_the_caller():
+    script = ("import threading\nfrom meshik.meshlab_module import pymeshlab_module\n"
+              "found = []\nworker = threading.Thread(target=lambda: found.append(pymeshlab_module()))\n"
+              "worker.start(); worker.join()\n"
+              "owners = [t for t in threading.enumerate() if t.name == 'meshik-pymeshlab-owner']\n"
+              "print(found[0].__name__, len(owners), owners[0].is_alive(), owners[0].daemon)\n")
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert result.stdout.split() == ["pymeshlab", "1", "True", "True"], result.stderr[-2000:]
 
 
 def test_batch_workers_exit_with_an_intact_heap(heap_check_library, samples_dir, tmp_path):
