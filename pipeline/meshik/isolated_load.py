@@ -17,6 +17,7 @@ from typing import Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError
+from meshik.meshlab_module import pymeshlab_module
 from meshik.safe_paths import utf8_name
 
 # Mesh files larger than this are refused before reading (a bound on memory, and /dev/zero).
@@ -52,7 +53,7 @@ def isolated_load(path: Path) -> Tuple[np.ndarray, np.ndarray]:
 
     Raises MeshFileError naming `path` when the reader refuses the file or dies on it.
     """
-    import pymeshlab  # imported before the fork, so the child does not import it again
+    pymeshlab = pymeshlab_module()  # imported before the fork, so the child does not import it again
 
     read_end, write_end = os.pipe()
     pid = os.fork()

@@ -12,6 +12,7 @@ import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
 from meshik.isolated_load import check_input_file, isolated_load
+from meshik.meshlab_module import pymeshlab_module
 from meshik.obj_text import check_obj_vertices
 from meshik.safe_paths import utf8_name
 
@@ -113,7 +114,7 @@ def save_mesh(path, vertices: np.ndarray, faces: np.ndarray) -> None:
     Only positions and triangles are written (no colours, normals or quality). Raises OutputError
     for a format pymeshlab cannot write.
     """
-    import pymeshlab
+    pymeshlab = pymeshlab_module()
 
     utf8_name(path, OutputError)
     if not np.isfinite(vertices).all():
@@ -140,7 +141,7 @@ def surface_distance(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np
     MeshLab's sampler: every vertex plus points on edges and faces (about `samples` per mesh),
     each measured to the nearest point of the other surface; returns the largest distance.
     """
-    import pymeshlab
+    pymeshlab = pymeshlab_module()
 
     meshes = pymeshlab.MeshSet()
     for vertices, faces in ((vertices_a, faces_a), (vertices_b, faces_b)):
@@ -156,7 +157,7 @@ def surface_distance(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np
 
 def saveable_format(extension: str) -> bool:
     """Whether pymeshlab can write meshes with this file extension (without the dot, e.g. "ply")."""
-    import pymeshlab
+    pymeshlab = pymeshlab_module()
 
     probe = pymeshlab.MeshSet()
     probe.add_mesh(pymeshlab.Mesh(vertex_matrix=np.eye(3), face_matrix=np.array([[0, 1, 2]], dtype=np.int32)))
