@@ -13,6 +13,7 @@
 #include "meshik/meshik.h"
 #include "meshik/sparse_cholesky.h"
 #include "mesh_topology.h"
+#include "phase_clock.h"
 #include "triangle_frames.h"
 
 namespace meshik {
@@ -41,6 +42,7 @@ struct ExampleSet::Impl {
   // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
   std::vector<double> rest_centroid;   // #components by 3
   std::vector<double> centroid_shift;  // #components by #E by 3
+  PhaseTimes phase_times;  // the constructor's phases (for benchmarks)
 
   // blend() solves with one anchor vertex per component; built on first use.
   mutable std::once_flag blend_system_once;

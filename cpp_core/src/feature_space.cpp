@@ -7,12 +7,15 @@
 #include <string>
 
 #include "lane_math.h"
+#include "polar_batch.h"
 #include "rotation_branches.h"
 #include "simd_clones.h"
 #include "so3.h"
 #include "thread_count.h"
 
 namespace meshik {
+
+static_assert(kPolarLanes == kLanes, "one polar batch per feature batch");
 
 namespace {
 
@@ -76,17 +79,16 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
     // every lane of a block), so the features are the same bits for any number of threads.
 #pragma omp parallel for schedule(static) num_threads(team)
     for (int batch = 0; batch < features.num_batches; ++batch) {
-      for (int j = batch * kLanes; j < std::min(m, (batch + 1) * kLanes); ++j) {
-        const Eigen::Matrix3d t = deformation_gradient(frames, triangles, examples[i], j);
-        const PolarDecomposition polar = polar_decomposition(t);
-        rotations[j] = polar.rotation;
-        logs[j] = so3_log(polar.rotation);
-        const auto basis = plane_basis_of(frames, j);
-        const size_t block = static_cast<size_t>(batch) * k + i;
-        store_rows((polar.stretch - Eigen::Matrix3d::Identity()) * basis,
-                   features.nonlinear.data() + 9 * kLanes * block, 3, j % kLanes);
-        store_rows((t - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
-                   0, j % kLanes);
+      const int first = batch * kLanes, count = std::min(m - first, kLanes);
+      Eigen::Matrix3d t[kLanes], stretch[kLanes];
+      for (int l = 0; l < count; ++l) t[l] = deformation_gradient(frames, triangles, examples[i], first + l);
+      polar_and_log_batch(t, count, &rotations[first], stretch, &logs[first]);
+      const size_t block = static_cast<size_t>(batch) * k + i;
+      for (int l = 0; l < count; ++l) {
+        const auto basis = plane_basis_of(frames, first + l);
+        store_rows((stretch[l] - Eigen::Matrix3d::Identity()) * basis, features.nonlinear.data() + 9 * kLanes * block,
+                   3, l);
+        store_rows((t[l] - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block, 0, l);
       }
     }
     if (consistent_branches) choose_consistent_log_branches(adjacency, rotations, logs);
