@@ -71,33 +71,56 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);
 
-  std::vector<Eigen::Vector3d> logs(m);
-  std::vector<Eigen::Matrix3d> rotations(m);
   const int team = thread_count(threads);
-  for (int i = 0; i < k; ++i) {
-    // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
-    // every lane of a block), so the features are the same bits for any number of threads.
-#pragma omp parallel for schedule(static) num_threads(team)
-    for (int batch = 0; batch < features.num_batches; ++batch) {
-      const int first = batch * kLanes, count = std::min(m - first, kLanes);
-      Eigen::Matrix3d t[kLanes], stretch[kLanes];
-      for (int l = 0; l < count; ++l) t[l] = deformation_gradient(frames, triangles, examples[i], first + l);
-      polar_and_log_batch(t, count, &rotations[first], stretch, &logs[first]);
-      const size_t block = static_cast<size_t>(batch) * k + i;
-      for (int l = 0; l < count; ++l) {
-        const auto basis = plane_basis_of(frames, first + l);
-        store_rows((stretch[l] - Eigen::Matrix3d::Identity()) * basis, features.nonlinear.data() + 9 * kLanes * block,
-                   3, l);
-        store_rows((t[l] - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block, 0, l);
+  // Examples go in groups of `team`: the features of each (all threads over its triangles), then
+  // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
+  const int group_size = std::max(1, std::min(team, k));
+  std::vector<Eigen::Matrix3d> rotations(m);
+  std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
+  std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
+  for (int group = 0; group < k; group += group_size) {
+    const int members = std::min(group_size, k - group);
+    for (int g = 0; g < members; ++g) {
+      const int i = group + g;
+      // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
+      // every lane of a block), so the features are the same bits for any number of threads.
+#pragma omp parallel num_threads(team)
+      {
+#pragma omp for schedule(static)
+        for (int batch = 0; batch < features.num_batches; ++batch) {
+          const int first = batch * kLanes, count = std::min(m - first, kLanes);
+          Eigen::Matrix3d t[kLanes], stretch[kLanes];
+          for (int l = 0; l < count; ++l) t[l] = deformation_gradient(frames, triangles, examples[i], first + l);
+          polar_and_log_batch(t, count, &rotations[first], stretch, &logs[g][first]);
+          const size_t block = static_cast<size_t>(batch) * k + i;
+          for (int l = 0; l < count; ++l) {
+            const auto basis = plane_basis_of(frames, first + l);
+            store_rows((stretch[l] - Eigen::Matrix3d::Identity()) * basis,
+                       features.nonlinear.data() + 9 * kLanes * block, 3, l);
+            store_rows((t[l] - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
+                       0, l);
+          }
+        }
+        if (consistent_branches) {
+#pragma omp for schedule(static)
+          for (int batch = 0; batch < features.num_batches; ++batch)
+            rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
+                                    distances[g].data());
+        }
       }
     }
-    if (consistent_branches) choose_consistent_log_branches(adjacency, rotations, logs);
-    for (int j = 0; j < m; ++j) {
-      double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
-      for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[j](r);
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
+    for (int g = 0; g < members; ++g) {
+      if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
+      const int i = group + g;
+      for (int j = 0; j < m; ++j) {
+        double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
+        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[g][j](r);
+      }
     }
-    if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
-      throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
+    for (int i = group; i < group + members; ++i)
+      if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
+        throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
   }
   // A batch's #E blocks of 9 rows are one block of 9 #E rows.
   features.nonlinear_single = paired_single(features.nonlinear, features.num_batches, 9 * k);
