@@ -106,6 +106,10 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap("topology and frames");
   if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
+  // Only the in-plane gradients are read after this: the plane bases live on in the features
+  // (a second copy), the inverse frames nowhere (120 bytes per triangle).
+  impl.frames.plane_basis = {};
+  impl.frames.frame_inverse = {};
   clock.lap("features");
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);

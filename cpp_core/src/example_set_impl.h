@@ -30,7 +30,7 @@ struct ExampleSet::Impl {
   std::vector<double> rest;    // #V by 3, internal order
   std::vector<int> triangles;  // #F by 3 internal vertex indices, internal triangle order
   VertexComponents components;
-  TriangleFrames frames;
+  TriangleFrames frames;  // the in-plane gradients only (plane bases and inverse frames released)
   ExampleFeatures features;
   CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
   // Every handle set's pose system (pose_system.h) has a row for each vertex used by triangles

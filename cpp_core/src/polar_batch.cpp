@@ -56,39 +56,55 @@ MESHIK_LANE_INLINE double atan2_upper(double s, double c) {
   return c < 0.0 ? kPi - angle : angle;
 }
 
-// Newton iteration on x (9 rows of N lanes, row-major entries), in place. Returns in
-// converged[l] whether lane l reached a step below kConvergedStep.
+// One scaled Newton step on all lanes of x (9 rows of N lanes, row-major entries), in place;
+// step[l]: in, lane l's previous step length (it decides the scaling); out, this one's.
+MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) {
+  double c[9][N], det[N], half_g[N], half_inverse[N];
+  // Cofactors: X^{-T} = C / det X.
+  for (int l = 0; l < N; ++l) {
+    c[0][l] = x[4][l] * x[8][l] - x[5][l] * x[7][l];
+    c[1][l] = x[5][l] * x[6][l] - x[3][l] * x[8][l];
+    c[2][l] = x[3][l] * x[7][l] - x[4][l] * x[6][l];
+    c[3][l] = x[2][l] * x[7][l] - x[1][l] * x[8][l];
+    c[4][l] = x[0][l] * x[8][l] - x[2][l] * x[6][l];
+    c[5][l] = x[1][l] * x[6][l] - x[0][l] * x[7][l];
+    c[6][l] = x[1][l] * x[5][l] - x[2][l] * x[4][l];
+    c[7][l] = x[2][l] * x[3][l] - x[0][l] * x[5][l];
+    c[8][l] = x[0][l] * x[4][l] - x[1][l] * x[3][l];
+    det[l] = x[0][l] * c[0][l] + x[1][l] * c[1][l] + x[2][l] * c[2][l];
+  }
+  for (int l = 0; l < N; ++l) {
+    double norm_x = 0.0, norm_c = 0.0;
+    for (int e = 0; e < 9; ++e) {
+      norm_x += x[e][l] * x[e][l];
+      norm_c += c[e][l] * c[e][l];
+    }
+    // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2), only while far from converged.
+    const double scaled = std::sqrt(std::sqrt(norm_c / norm_x) / std::abs(det[l]));
+    const double g = step[l] > kScaleWhileStepAbove ? scaled : 1.0;
+    half_g[l] = 0.5 * g;
+    half_inverse[l] = 0.5 / (g * det[l]);
+  }
+  double change[N] = {};
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) {
+      const double next = half_g[l] * x[e][l] + half_inverse[l] * c[e][l];
+      change[l] += (next - x[e][l]) * (next - x[e][l]);
+      x[e][l] = next;
+    }
+  for (int l = 0; l < N; ++l) step[l] = std::sqrt(change[l]);
+}
+
+// Newton iteration on x (9 rows of N lanes), in place, until every lane's step is below
+// kConvergedStep or kMaxSteps. Returns in converged[l] whether lane l got there.
 MESHIK_LANE_INLINE void newton_polar_lanes(double (&x)[9][N], bool (&converged)[N]) {
   double step[N];
   for (int l = 0; l < N; ++l) step[l] = 1.0;
   for (int iteration = 0; iteration < kMaxSteps; ++iteration) {
-    double largest = 0.0;
-    for (int l = 0; l < N; ++l) {
-      const double x0 = x[0][l], x1 = x[1][l], x2 = x[2][l], x3 = x[3][l], x4 = x[4][l], x5 = x[5][l],
-                   x6 = x[6][l], x7 = x[7][l], x8 = x[8][l];
-      // Cofactors: X^{-T} = C / det X.
-      const double c[9] = {x4 * x8 - x5 * x7, x5 * x6 - x3 * x8, x3 * x7 - x4 * x6,
-                           x2 * x7 - x1 * x8, x0 * x8 - x2 * x6, x1 * x6 - x0 * x7,
-                           x1 * x5 - x2 * x4, x2 * x3 - x0 * x5, x0 * x4 - x1 * x3};
-      const double det = x0 * c[0] + x1 * c[1] + x2 * c[2];
-      double norm_x = 0.0, norm_c = 0.0;
-      for (int e = 0; e < 9; ++e) {
-        norm_x += x[e][l] * x[e][l];
-        norm_c += c[e] * c[e];
-      }
-      // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2).
-      const double g = step[l] > kScaleWhileStepAbove ? std::sqrt(std::sqrt(norm_c / norm_x) / std::abs(det)) : 1.0;
-      const double half_g = 0.5 * g, half_inverse = 0.5 / (g * det);
-      double change = 0.0;
-      for (int e = 0; e < 9; ++e) {
-        const double next = half_g * x[e][l] + half_inverse * c[e];
-        change += (next - x[e][l]) * (next - x[e][l]);
-        x[e][l] = next;
-      }
-      step[l] = std::sqrt(change);
-      largest = std::max(largest, step[l]);
-    }
-    if (!(largest >= kConvergedStep)) break;
+    newton_step_lanes(x, step);
+    int pending = 0;
+    for (int l = 0; l < N; ++l) pending += !(step[l] < kConvergedStep);
+    if (pending == 0) break;
   }
   for (int l = 0; l < N; ++l) converged[l] = step[l] < kConvergedStep;
 }

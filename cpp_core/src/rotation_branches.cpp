@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace meshik {
@@ -15,79 +16,76 @@ constexpr double kIdentityAngle = 1e-12;
 
 // Prim's frontier: the triangles next to the tree, each with its best edge into the tree
 // (distance, tree triangle), in a binary heap ordered by (distance, from, to), position-indexed
-// so an edge found shorter lowers its triangle's key in place.
+// so an edge found shorter lowers its triangle's key in place. The keys live in the heap's
+// entries, so sifting reads no other array.
 class Frontier {
  public:
-  explicit Frontier(int m) : position_(m, -1), distance_(m), from_(m) {}
+  explicit Frontier(int m) : position_(m, -1) {}
 
   bool empty() const { return heap_.empty(); }
-  int from(int to) const { return from_[to]; }
 
   // Offers the edge (distance, from) to triangle `to`, not in the tree: kept if it is the
   // triangle's first or better than its current edge.
   void offer(int to, double distance, int from) {
+    const Entry entry{distance, from, to};
     int at = position_[to];
-    if (at >= 0 && !(std::tie(distance, from) < std::tie(distance_[to], from_[to]))) return;
-    distance_[to] = distance;
-    from_[to] = from;
     if (at < 0) {
       at = static_cast<int>(heap_.size());
-      heap_.push_back(to);
-      position_[to] = at;
+      heap_.push_back(entry);
+    } else if (!less(entry, heap_[at])) {
+      return;
     }
-    sift_up(at);
+    sift_up(at, entry);
   }
 
-  // Removes and returns the triangle with the least (distance, from, to).
-  int pop() {
-    const int top = heap_.front();
-    position_[top] = -2;  // in the tree
-    const int last = heap_.back();
+  // Removes the triangle with the least (distance, from, to); returns it and its tree neighbour.
+  std::pair<int, int> pop() {
+    const Entry top = heap_.front();
+    position_[top.to] = -1;
+    const Entry last = heap_.back();
     heap_.pop_back();
-    if (!heap_.empty()) {
-      heap_.front() = last;
-      position_[last] = 0;
-      sift_down(0);
-    }
-    return top;
+    if (!heap_.empty()) sift_down(0, last);
+    return {top.to, top.from};
   }
 
  private:
-  bool less(int a, int b) const {
-    return std::tie(distance_[a], from_[a], a) < std::tie(distance_[b], from_[b], b);
+  struct Entry {
+    double distance;
+    int from, to;
+  };
+  static bool less(const Entry& a, const Entry& b) {
+    return std::tie(a.distance, a.from, a.to) < std::tie(b.distance, b.from, b.to);
   }
-  void place(int at, int triangle) {
-    heap_[at] = triangle;
-    position_[triangle] = at;
+  void place(int at, const Entry& entry) {
+    heap_[at] = entry;
+    position_[entry.to] = at;
   }
-  void sift_up(int at) {
-    const int moving = heap_[at];
+  // Puts entry at `at` or above.
+  void sift_up(int at, const Entry& entry) {
     while (at > 0) {
       const int parent = (at - 1) / 2;
-      if (!less(moving, heap_[parent])) break;
+      if (!less(entry, heap_[parent])) break;
       place(at, heap_[parent]);
       at = parent;
     }
-    place(at, moving);
+    place(at, entry);
   }
-  void sift_down(int at) {
-    const int moving = heap_[at];
+  // Puts entry at `at` or below.
+  void sift_down(int at, const Entry& entry) {
     const int size = static_cast<int>(heap_.size());
     for (;;) {
       int child = 2 * at + 1;
       if (child >= size) break;
       if (child + 1 < size && less(heap_[child + 1], heap_[child])) ++child;
-      if (!less(heap_[child], moving)) break;
+      if (!less(heap_[child], entry)) break;
       place(at, heap_[child]);
       at = child;
     }
-    place(at, moving);
+    place(at, entry);
   }
 
-  std::vector<int> heap_;
-  std::vector<int> position_;  // -1: not reached yet, -2: in the tree, else the heap slot
-  std::vector<double> distance_;
-  std::vector<int> from_;
+  std::vector<Entry> heap_;
+  std::vector<int> position_;  // the heap slot of each triangle, -1 when not in the heap
 };
 
 }  // namespace
@@ -155,8 +153,9 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const do
       }
       seen[joined] = 2;  // in the tree
       if (frontier.empty()) break;
-      joined = frontier.pop();
-      logs[joined] = closest_log_branch(logs[joined], logs[frontier.from(joined)]);
+      const auto [to, from] = frontier.pop();
+      logs[to] = closest_log_branch(logs[to], logs[from]);
+      joined = to;
     }
   }
 }
