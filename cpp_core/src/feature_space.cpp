@@ -15,7 +15,7 @@
 
 namespace meshik {
 
-static_assert(kPolarLanes == kLanes, "one polar batch per feature batch");
+static_assert(kPolarLanes == kLanes && kGradientLanes == kLanes, "one polar batch per feature batch");
 
 namespace {
 
@@ -90,7 +90,7 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
           Eigen::Matrix3d t[kLanes], stretch[kLanes];
-          for (int l = 0; l < count; ++l) t[l] = deformation_gradient(frames, triangles, examples[i], first + l);
+          deformation_gradients(frames, triangles, examples[i], first, count, t);
           polar_and_log_batch(t, count, &rotations[first], stretch, &logs[g][first]);
           const size_t block = static_cast<size_t>(batch) * k + i;
           for (int l = 0; l < count; ++l) {
