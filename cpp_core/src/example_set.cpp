@@ -108,8 +108,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
   // Only the in-plane gradients are read after this: the plane bases live on in the features
   // (a second copy), the inverse frames nowhere (120 bytes per triangle).
-  impl.frames.plane_basis = {};
-  impl.frames.frame_inverse = {};
+  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
+  impl.frames.frame_inverse = std::vector<double>();
   clock.lap("features");
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
