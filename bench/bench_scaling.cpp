@@ -13,7 +13,7 @@
 // removed) is factored by MeshIK's sparse Cholesky and by CHOLMOD and Eigen (library_cholesky.h):
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
 //
-// Usage: bench_scaling [--data DIR] [--levels N] [--reps N]
+// Usage: bench_scaling [--data DIR] [--levels N] [--first-level N] [--reps N]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -193,11 +193,12 @@ bool in_child(const Work& work, T& result) {
 
 int main(int argc, char** argv) {
   std::string data = "../shared/data";
-  int levels = 3, reps = 3;
+  int levels = 3, first_level = 1, reps = 3;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     if (key == "--data") data = argv[i + 1];
     else if (key == "--levels") levels = std::max(1, std::atoi(argv[i + 1]));
+    else if (key == "--first-level") first_level = std::max(1, std::atoi(argv[i + 1]));
     else if (key == "--reps") reps = std::max(1, std::atoi(argv[i + 1]));
     else if (key != "--samples") std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
   }
@@ -219,7 +220,7 @@ int main(int argc, char** argv) {
   std::printf("%10s %7s | %10s %8s %9s %8s %9s | %9s %9s | %8s %8s %8s | %s\n", "triangles", "threads", "ExampleSet",
               "Solver", "iteration", "pose", "first", "peak MB", "set B/tri", "Ours", "Lib", "Ours/Lib", "library");
   std::vector<std::string> floors;
-  for (int level = 1; level <= levels; ++level) {
+  for (int level = first_level; level <= levels; ++level) {
     FactorComparison factor;
     const bool compared = in_child([&] { return compare_factor(base, level); }, factor);
     std::vector<Measurement> rows;
