@@ -50,28 +50,15 @@ std::vector<float> paired_single(const std::vector<double>& blocks, int num_batc
   return paired;
 }
 
-}  // namespace
-
-ExampleFeatures compute_example_features(const TriangleFrames& frames,
-                                         const TriangleAdjacency& adjacency, const int* triangles,
-                                         const std::vector<const double*>& examples,
-                                         const ProgressCallback& progress,
-                                         bool consistent_branches, int threads) {
-  const int m = frames.num_triangles;
-  const int k = static_cast<int>(examples.size());
-  ExampleFeatures features;
-  features.num_examples = k;
-  features.num_triangles = m;
-  features.num_batches = (m + kLanes - 1) / kLanes;
-  const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
-  features.nonlinear.assign(9 * slots * k, 0.0);
-  features.linear.assign(6 * slots * k, 0.0);
-  features.plane_basis.assign(6 * slots, 0.0);
-  for (int j = 0; j < m; ++j)
-    store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
-               j % kLanes);
-
-  const int team = thread_count(threads);
+// Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
+// logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
+// gradients, for every example, on `team` threads. Its working arrays (rotations, logs and edge
+// distances of a group of examples) are freed on return.
+void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& adjacency, const int* triangles,
+                         const std::vector<const double*>& examples, const ProgressCallback& progress,
+                         bool consistent_branches, int team, ExampleFeatures& features) {
+  const int m = features.num_triangles;
+  const int k = features.num_examples;
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
   // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
   const int group_size = std::max(1, std::min(team, k));
@@ -123,6 +110,31 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
       if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
         throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
   }
+}
+
+}  // namespace
+
+ExampleFeatures compute_example_features(const TriangleFrames& frames,
+                                         const TriangleAdjacency& adjacency, const int* triangles,
+                                         const std::vector<const double*>& examples,
+                                         const ProgressCallback& progress,
+                                         bool consistent_branches, int threads) {
+  const int m = frames.num_triangles;
+  const int k = static_cast<int>(examples.size());
+  ExampleFeatures features;
+  features.num_examples = k;
+  features.num_triangles = m;
+  features.num_batches = (m + kLanes - 1) / kLanes;
+  const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
+  features.nonlinear.assign(9 * slots * k, 0.0);
+  features.linear.assign(6 * slots * k, 0.0);
+  features.plane_basis.assign(6 * slots, 0.0);
+  for (int j = 0; j < m; ++j)
+    store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
+               j % kLanes);
+
+  fill_example_blocks(frames, adjacency, triangles, examples, progress, consistent_branches, thread_count(threads),
+                      features);
   // A batch's #E blocks of 9 rows are one block of 9 #E rows.
   features.nonlinear_single = paired_single(features.nonlinear, features.num_batches, 9 * k);
   features.plane_basis_single = paired_single(features.plane_basis, features.num_batches, 6);
