@@ -2,9 +2,7 @@
 // examples' features with their rotation branches, the normal matrix, the ordering and symbolic
 // analysis) on the horse and the elephant with 4 examples (--data, ../shared/data), on one
 // thread and on all cores, built alternately in the same run (the machine is shared: load
-// drifts). Prints the median of each phase and the all-cores / one-thread ratio. With more than
-// one thread the system's matrix and analysis run beside the features ("beside features: ...",
-// not added to the total).
+// drifts). Prints the median of each phase and the all-cores / one-thread ratio.
 //
 // Usage: bench_example_set [--data DIR] [--repeats N] [--only NAME]
 #include <algorithm>
@@ -40,7 +38,7 @@ void add_sample(const meshik::PhaseTimes& phases, PhaseSamples& samples) {
   for (const auto& [name, ms] : phases) {
     if (samples.times.find(name) == samples.times.end()) samples.order.push_back(name);
     samples.times[name].push_back(ms);
-    if (name.rfind("beside", 0) != 0) total += ms;  // phases on a second thread overlap the others
+    total += ms;
   }
   if (samples.times.find("total") == samples.times.end()) samples.order.push_back("total");
   samples.times["total"].push_back(total);
@@ -64,8 +62,7 @@ void bench_mesh(const std::string& name, const fs::path& folder, int repeats) {
   std::printf("\n%s: %d vertices, %d triangles, 4 examples; median of %d alternating runs (ms)\n", name.c_str(),
               rest.num_vertices(), rest.num_triangles(), repeats);
   std::printf("  %-34s %10s %10s %8s %14s\n", "phase", "1 thread", "all cores", "all/1", "ns/(tri*ex) 1t");
-  // Phases of either setting (one thread has no "beside" phases, more threads no serial system
-  // phases), in the order they ran.
+  // Phases of either setting, in the order they ran.
   std::vector<std::string> phases = samples[0].order;
   for (const std::string& phase : samples[1].order)
     if (std::find(phases.begin(), phases.end(), phase) == phases.end())

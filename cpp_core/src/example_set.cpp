@@ -1,7 +1,6 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <numeric>
 
 #include "example_set_impl.h"
@@ -11,7 +10,6 @@
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
-#include "thread_count.h"
 
 namespace meshik {
 
@@ -107,39 +105,21 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   clock.lap("topology and frames");
   if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
-  // The system's matrix and analysis need only the topology and the frames' gradients: with more
-  // than one thread they are a task of their own beside the features (std::async: the future
-  // joins it, also when the features throw), else they follow them.
-  PhaseTimes system_times;
-  const auto build_system = [&impl, triangles, &system_times] {
-    PhaseClock system_clock(system_times);
-    impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, impl.num_vertices);
-    impl.system_row_of_vertex.assign(impl.num_vertices, -1);
-    int system_rows = 0;
-    for (int v = 0; v < impl.num_vertices; ++v)
-      if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
-    impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
-    system_clock.lap("normal matrix");
-    if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
-    system_clock.lap("analysis");
-  };
-  std::future<void> system;
-  if (thread_count(threads) > 1) system = std::async(std::launch::async, build_system);
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
-  clock.lap("features");
-  if (system.valid()) {
-    system.get();
-    clock.lap("system (rest beside features)");
-    for (auto& [name, ms] : system_times) impl.phase_times.emplace_back("beside features: " + name, ms);
-  } else {
-    build_system();
-    for (auto& [name, ms] : system_times) impl.phase_times.emplace_back(name, ms);
-    clock.restart();
-  }
-  // Only the in-plane gradients are read from here on: the plane bases live on in the features
+  // Only the in-plane gradients are read after this: the plane bases live on in the features
   // (a second copy), the inverse frames nowhere (120 bytes per triangle).
   impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
   impl.frames.frame_inverse = std::vector<double>();
+  clock.lap("features");
+  impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
+  impl.system_row_of_vertex.assign(rest.num_vertices, -1);
+  int system_rows = 0;
+  for (int v = 0; v < rest.num_vertices; ++v)
+    if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
+  impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
+  clock.lap("normal matrix");
+  if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
+  clock.lap("analysis");
   compute_centroids(impl, example_pointers);
   clock.lap("centroids");
 }

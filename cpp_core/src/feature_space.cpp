@@ -71,10 +71,9 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       const int i = group + g;
       // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
       // every lane of a block), so the features are the same bits for any number of threads.
-      // Dynamic schedules: the ExampleSet may run its system's analysis beside this.
 #pragma omp parallel num_threads(team)
       {
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(static)
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
           Eigen::Matrix3d t[kLanes], stretch[kLanes];
@@ -90,14 +89,14 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           }
         }
         if (consistent_branches) {
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(static)
           for (int batch = 0; batch < features.num_batches; ++batch)
             rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
                                     distances[g].data());
         }
       }
     }
-#pragma omp parallel for schedule(dynamic, 1) num_threads(std::min(team, members))
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
     for (int g = 0; g < members; ++g) {
       if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
       const int i = group + g;

@@ -22,9 +22,6 @@ class PhaseClock {
     last_ = now;
   }
 
-  // Starts the next lap now, recording nothing (the time since the last lap was timed elsewhere).
-  void restart() { last_ = std::chrono::steady_clock::now(); }
-
  private:
   PhaseTimes& times_;
   std::chrono::steady_clock::time_point last_;
