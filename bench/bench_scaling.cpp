@@ -8,7 +8,8 @@
 //   iteration   one Gauss-Newton iteration (median time between consecutive iteration reports),
 //   pose        one whole pose from the linear start to convergence,
 //   first       ExampleSet + Solver + pose: time to the first pose,
-//   peak RSS    the child's peak resident memory, and the ExampleSet's own arrays per triangle.
+//   peak RSS    the child's peak resident memory (also as it was after the ExampleSet), and the
+//               ExampleSet's own arrays per triangle (its symbolic analysis not counted).
 // In the same run, the same-sized normal matrix G'^T G' (4th vertices eliminated, handles
 // removed) is factored by MeshIK's sparse Cholesky and by CHOLMOD and Eigen (library_cholesky.h):
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
@@ -91,7 +92,7 @@ void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& p
 // What one child measures (sent to the parent through a pipe as raw bytes).
 struct Measurement {
   int triangles = 0, iterations = 0;
-  double example_set_ms = 0, solver_ms = 0, iteration_ms = -1, pose_ms = 0, peak_mb = 0;
+  double example_set_ms = 0, solver_ms = 0, iteration_ms = -1, pose_ms = 0, peak_mb = 0, set_peak_mb = 0;
   double set_bytes_per_triangle = 0, feature_bytes_per_triangle_example = 0;
   char phases[512] = {};
 };
@@ -107,6 +108,7 @@ Measurement measure(const PoseSet& base, int levels, int threads, int reps) {
   auto start = std::chrono::steady_clock::now();
   const auto examples = std::make_shared<meshik::ExampleSet>(view, pointers, meshik::ProgressCallback{}, threads);
   out.example_set_ms = ms_since(start);
+  out.set_peak_mb = peak_rss_mb();
   int written = 0;
   for (const auto& [name, ms] : examples->impl().phase_times)
     written += std::snprintf(out.phases + written, sizeof out.phases - written, "%s %.0f, ", name.c_str(), ms);
@@ -236,8 +238,9 @@ int main(int argc, char** argv) {
                   m.peak_mb, m.set_bytes_per_triangle, compared ? factor.ours_ms : 0.0,
                   compared ? factor.fastest_ms : 0.0, compared ? factor.ours_ms / factor.fastest_ms : 0.0,
                   compared ? factor.fastest : "-");
-      std::printf("%18s ExampleSet phases: %s%d iterations, features %.0f B per triangle and example\n", "",
-                  m.phases, m.iterations, m.feature_bytes_per_triangle_example);
+      std::printf("%18s ExampleSet phases: %s%d iterations, features %.0f B per triangle and example, "
+                  "peak RSS after the ExampleSet %.0f MB\n", "", m.phases, m.iterations,
+                  m.feature_bytes_per_triangle_example, m.set_peak_mb);
       if (level == 3 && threads == 0) {
         char line[200];
         std::snprintf(line, sizeof line, "1.08M triangles, all cores: ExampleSet + Solver + first pose %.0f ms <= 3000: %s; "
