@@ -7,6 +7,7 @@
 #include "gradient_operator.h"
 #include "input_validation.h"
 #include "locality_order.h"
+#include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
 
@@ -74,10 +75,12 @@ std::vector<int> component_anchors(const VertexComponents& components) {
 ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,
                        const ProgressCallback& progress, int threads)
     : impl_(std::make_unique<Impl>()) {
+  Impl& impl = *impl_;
+  PhaseClock clock(impl.phase_times);
   validate_rest_mesh(rest);
   validate_examples(examples, rest.num_vertices);
+  clock.lap("validation");
   if (progress && !progress(0.0, "validated input")) throw Cancelled("cancelled after validation");
-  Impl& impl = *impl_;
   impl.num_vertices = rest.num_vertices;
   impl.num_triangles = rest.num_triangles;
   impl.num_examples = static_cast<int>(examples.size());
@@ -95,20 +98,30 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     internal_examples.push_back(impl.to_internal(e));
     example_pointers.push_back(internal_examples.back().data());
   }
+  clock.lap("locality order");
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
   const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  clock.lap("topology and frames");
   if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
+  // Only the in-plane gradients are read after this: the plane bases live on in the features
+  // (a second copy), the inverse frames nowhere (120 bytes per triangle).
+  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
+  impl.frames.frame_inverse = std::vector<double>();
+  clock.lap("features");
   impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
   int system_rows = 0;
   for (int v = 0; v < rest.num_vertices; ++v)
     if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
   impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
+  clock.lap("normal matrix");
   if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
+  clock.lap("analysis");
   compute_centroids(impl, example_pointers);
+  clock.lap("centroids");
 }
 
 ExampleSet::~ExampleSet() = default;

@@ -13,6 +13,7 @@
 #include "meshik/meshik.h"
 #include "meshik/sparse_cholesky.h"
 #include "mesh_topology.h"
+#include "phase_clock.h"
 #include "triangle_frames.h"
 
 namespace meshik {
@@ -29,7 +30,7 @@ struct ExampleSet::Impl {
   std::vector<double> rest;    // #V by 3, internal order
   std::vector<int> triangles;  // #F by 3 internal vertex indices, internal triangle order
   VertexComponents components;
-  TriangleFrames frames;
+  TriangleFrames frames;  // the in-plane gradients only (plane bases and inverse frames released)
   ExampleFeatures features;
   CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
   // Every handle set's pose system (pose_system.h) has a row for each vertex used by triangles
@@ -41,6 +42,7 @@ struct ExampleSet::Impl {
   // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
   std::vector<double> rest_centroid;   // #components by 3
   std::vector<double> centroid_shift;  // #components by #E by 3
+  PhaseTimes phase_times;  // the constructor's phases (for benchmarks)
 
   // blend() solves with one anchor vertex per component; built on first use.
   mutable std::once_flag blend_system_once;

@@ -7,12 +7,15 @@
 #include <string>
 
 #include "lane_math.h"
+#include "polar_batch.h"
 #include "rotation_branches.h"
 #include "simd_clones.h"
 #include "so3.h"
 #include "thread_count.h"
 
 namespace meshik {
+
+static_assert(kPolarLanes == kLanes && kGradientLanes == kLanes, "one polar batch per feature batch");
 
 namespace {
 
@@ -47,6 +50,67 @@ std::vector<float> paired_single(const std::vector<double>& blocks, int num_batc
   return paired;
 }
 
+// Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
+// logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
+// gradients, for every example, on `team` threads. Its working arrays (rotations, logs and edge
+// distances of a group of examples) are freed on return.
+void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& adjacency, const int* triangles,
+                         const std::vector<const double*>& examples, const ProgressCallback& progress,
+                         bool consistent_branches, int team, ExampleFeatures& features) {
+  const int m = features.num_triangles;
+  const int k = features.num_examples;
+  // Examples go in groups of `team`: the features of each (all threads over its triangles), then
+  // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
+  const int group_size = std::max(1, std::min(team, k));
+  std::vector<Eigen::Matrix3d> rotations(m);
+  std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
+  std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
+  for (int group = 0; group < k; group += group_size) {
+    const int members = std::min(group_size, k - group);
+    for (int g = 0; g < members; ++g) {
+      const int i = group + g;
+      // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
+      // every lane of a block), so the features are the same bits for any number of threads.
+#pragma omp parallel num_threads(team)
+      {
+#pragma omp for schedule(static)
+        for (int batch = 0; batch < features.num_batches; ++batch) {
+          const int first = batch * kLanes, count = std::min(m - first, kLanes);
+          Eigen::Matrix3d t[kLanes], stretch[kLanes];
+          deformation_gradients(frames, triangles, examples[i], first, count, t);
+          polar_and_log_batch(t, count, &rotations[first], stretch, &logs[g][first]);
+          const size_t block = static_cast<size_t>(batch) * k + i;
+          for (int l = 0; l < count; ++l) {
+            const auto basis = plane_basis_of(frames, first + l);
+            store_rows((stretch[l] - Eigen::Matrix3d::Identity()) * basis,
+                       features.nonlinear.data() + 9 * kLanes * block, 3, l);
+            store_rows((t[l] - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
+                       0, l);
+          }
+        }
+        if (consistent_branches) {
+#pragma omp for schedule(static)
+          for (int batch = 0; batch < features.num_batches; ++batch)
+            rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
+                                    distances[g].data());
+        }
+      }
+    }
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
+    for (int g = 0; g < members; ++g) {
+      if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
+      const int i = group + g;
+      for (int j = 0; j < m; ++j) {
+        double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
+        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[g][j](r);
+      }
+    }
+    for (int i = group; i < group + members; ++i)
+      if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
+        throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
+  }
+}
+
 }  // namespace
 
 ExampleFeatures compute_example_features(const TriangleFrames& frames,
@@ -68,35 +132,8 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);
 
-  std::vector<Eigen::Vector3d> logs(m);
-  std::vector<Eigen::Matrix3d> rotations(m);
-  const int team = thread_count(threads);
-  for (int i = 0; i < k; ++i) {
-    // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
-    // every lane of a block), so the features are the same bits for any number of threads.
-#pragma omp parallel for schedule(static) num_threads(team)
-    for (int batch = 0; batch < features.num_batches; ++batch) {
-      for (int j = batch * kLanes; j < std::min(m, (batch + 1) * kLanes); ++j) {
-        const Eigen::Matrix3d t = deformation_gradient(frames, triangles, examples[i], j);
-        const PolarDecomposition polar = polar_decomposition(t);
-        rotations[j] = polar.rotation;
-        logs[j] = so3_log(polar.rotation);
-        const auto basis = plane_basis_of(frames, j);
-        const size_t block = static_cast<size_t>(batch) * k + i;
-        store_rows((polar.stretch - Eigen::Matrix3d::Identity()) * basis,
-                   features.nonlinear.data() + 9 * kLanes * block, 3, j % kLanes);
-        store_rows((t - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
-                   0, j % kLanes);
-      }
-    }
-    if (consistent_branches) choose_consistent_log_branches(adjacency, rotations, logs);
-    for (int j = 0; j < m; ++j) {
-      double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
-      for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[j](r);
-    }
-    if (progress && !progress(static_cast<double>(i + 1) / k, "example features"))
-      throw Cancelled("cancelled while computing the features of example " + std::to_string(i));
-  }
+  fill_example_blocks(frames, adjacency, triangles, examples, progress, consistent_branches, thread_count(threads),
+                      features);
   // A batch's #E blocks of 9 rows are one block of 9 #E rows.
   features.nonlinear_single = paired_single(features.nonlinear, features.num_batches, 9 * k);
   features.plane_basis_single = paired_single(features.plane_basis, features.num_batches, 6);

@@ -21,12 +21,26 @@ namespace meshik {
 Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
                                    const Eigen::Vector3d& reference);
 
-// rotations: #F rotation matrices, one per triangle; logs: their #F principal logs, replaced by
-// consistent branches. Grows a minimum spanning tree of the edge adjacency (edge length: the
-// angle between the two triangles' rotations) from the least rotated triangle of each component,
-// which keeps its principal log, and gives every triangle added the branch closest to the log of
-// the tree neighbour it was reached from, so branches are only copied between nearly equal
-// rotations.
+// The length of the adjacency edge from triangle a to b: 3 - trace(R_a^T R_b), monotone in the
+// angle between the two rotations.
+double rotation_distance(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to);
+
+// rotations: #F rotation matrices, one per triangle. Writes distances[s] =
+// rotation_distance(R_j, R_neighbour[s]) for the adjacency entries s of triangles j in
+// [first, last) (distances: one per adjacency entry).
+void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Matrix3d* rotations, int first,
+                             int last, double* distances);
+
+// distances: one per adjacency entry (rotation_edge_distances); logs: the #F principal logs of
+// the triangles' rotations, replaced by consistent branches. Grows a minimum spanning tree of the
+// edge adjacency (Prim's, ties broken by the lower tree triangle, then the lower new one) from the
+// least rotated triangle of each component, which keeps its principal log, and gives every
+// triangle added the branch closest to the log of the tree neighbour it was reached from, so
+// branches are only copied between nearly equal rotations.
+void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const double* distances,
+                                    std::vector<Eigen::Vector3d>& logs);
+
+// The same from the rotations (#F) themselves.
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                     const std::vector<Eigen::Matrix3d>& rotations,
                                     std::vector<Eigen::Vector3d>& logs);

@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "simd_clones.h"
+
 namespace meshik {
 
 namespace {
@@ -63,13 +65,49 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
 
 Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
                                      const double* vertices, int j) {
-  const Eigen::Vector3d a = corner(vertices, triangles, j, 0);
-  const Eigen::Vector3d e1 = corner(vertices, triangles, j, 1) - a;
-  const Eigen::Vector3d e2 = corner(vertices, triangles, j, 2) - a;
-  Eigen::Matrix3d deformed;
-  deformed << e1, e2, fourth_vertex_offset(e1, e2);
-  return deformed * Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
-                        frames.frame_inverse.data() + 9 * static_cast<size_t>(j));
+  Eigen::Matrix3d t;
+  deformation_gradients(frames, triangles, vertices, j, 1, &t);
+  return t;
+}
+
+MESHIK_SIMD_CLONES
+void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
+                           int count, Eigen::Matrix3d* t) {
+  constexpr int N = kGradientLanes;
+  // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
+  // lanes past count repeat the last triangle.
+  double d[9][N], inverse[9][N];
+  for (int l = 0; l < N; ++l) {
+    const int j = first + (l < count ? l : count - 1);
+    const double* a = vertices + 3 * static_cast<size_t>(triangles[3 * j]);
+    const double* b = vertices + 3 * static_cast<size_t>(triangles[3 * j + 1]);
+    const double* c = vertices + 3 * static_cast<size_t>(triangles[3 * j + 2]);
+    for (int r = 0; r < 3; ++r) {
+      d[3 * r][l] = b[r] - a[r];
+      d[3 * r + 1][l] = c[r] - a[r];
+    }
+    for (int e = 0; e < 9; ++e) inverse[e][l] = frames.frame_inverse[9 * static_cast<size_t>(j) + e];
+  }
+  for (int l = 0; l < N; ++l) {
+    const double n0 = d[3][l] * d[7][l] - d[6][l] * d[4][l];
+    const double n1 = d[6][l] * d[1][l] - d[0][l] * d[7][l];
+    const double n2 = d[0][l] * d[4][l] - d[3][l] * d[1][l];
+    const double length = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+    const double root = std::sqrt(length);
+    const bool flat = !(length > 0.0);
+    d[2][l] = flat ? 0.0 : n0 / root;
+    d[5][l] = flat ? 0.0 : n1 / root;
+    d[8][l] = flat ? 0.0 : n2 / root;
+  }
+  double product[9][N];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      for (int l = 0; l < N; ++l)
+        product[3 * r + c][l] = d[3 * r][l] * inverse[c][l] + d[3 * r + 1][l] * inverse[3 + c][l] +
+                                d[3 * r + 2][l] * inverse[6 + c][l];
+  for (int l = 0; l < count; ++l)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) t[l](r, c) = product[3 * r + c][l];
 }
 
 }  // namespace meshik

@@ -38,6 +38,14 @@ Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vec
 Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
                                      const double* vertices, int j);
 
+// Triangles a deformation_gradients call takes at once (their arithmetic is SIMD).
+constexpr int kGradientLanes = 8;
+
+// deformation_gradient for the count (<= kGradientLanes) triangles first, first + 1, ...: writes
+// their gradients to t[0 .. count).
+void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
+                           int count, Eigen::Matrix3d* t);
+
 // Eigen views of one triangle's blocks.
 inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> plane_basis_of(
     const TriangleFrames& frames, int j) {

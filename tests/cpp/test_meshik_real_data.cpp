@@ -6,9 +6,11 @@
 // flips thanks to consistent rotation-log branches.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
+#include "example_set_impl.h"
 #include "test_meshik_support.h"
 
 namespace {
@@ -111,6 +113,28 @@ TEST(RealData, ExampleHandlesReproduceTheExampleAndItsWeights) {
       EXPECT_LT(meshik_test::max_vertex_distance(pose.vertices, meshes.examples[i]), 1e-6 * diagonal);
       for (int e = 0; e < 4; ++e) EXPECT_NEAR(pose.weights[e], e == i ? 1.0 : 0.0, 1e-6);
     }
+  }
+}
+
+TEST(RealData, TheHorsesFeaturesAreTheSameBitsForAnyThreadCount) {
+  // 4 examples: 1 thread takes them one at a time, 2 and 3 threads in groups (their branch
+  // choices side by side) and split every example's triangles differently.
+  LOAD_OR_SKIP(meshes, "horse-poses", "reference.obj", {"1.obj", "2.obj", "3.obj", "4.obj"});
+  const meshik::ExampleSet one(meshes.view(), meshes.example_pointers(), {}, 1);
+  const meshik::ExampleFeatures& expected = one.impl().features;
+  int branched = 0;  // logs off the principal branch (longer than pi): the branch choice is exercised
+  for (size_t e = 0; e < expected.nonlinear.size(); e += 9 * meshik::kLanes)
+    for (int l = 0; l < meshik::kLanes; ++l) {
+      const double* x = expected.nonlinear.data() + e + l;
+      branched += std::hypot(x[0], x[meshik::kLanes], x[2 * meshik::kLanes]) > 3.2;
+    }
+  std::printf("horse: %d triangle logs off the principal branch\n", branched);
+  for (int threads : {2, 3}) {
+    const meshik::ExampleSet other(meshes.view(), meshes.example_pointers(), {}, threads);
+    const meshik::ExampleFeatures& features = other.impl().features;
+    EXPECT_EQ(features.nonlinear, expected.nonlinear) << threads << " threads";
+    EXPECT_EQ(features.linear, expected.linear) << threads << " threads";
+    EXPECT_EQ(features.nonlinear_single, expected.nonlinear_single) << threads << " threads";
   }
 }
 

@@ -3,12 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <queue>
 #include <random>
+#include <tuple>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include "lane_math.h"
+#include "mesh_topology.h"
+#include "polar_batch.h"
 #include "rotation_branches.h"
 #include "so3.h"
 
@@ -201,6 +206,110 @@ TEST(RotationBranches, ATwistBeyondAHalfTurnKeepsContinuousLogs) {
   for (int j = 0; j < m; ++j) {
     EXPECT_NEAR(logs[j].z(), 1.8 * kPi * j / (m - 1), 1e-12) << j;
     EXPECT_LT((so3_exp(logs[j]) - rotations[j]).norm(), 1e-12);  // still logs of the same rotations
+  }
+}
+
+// The branch choice as first written (kept here as the reference): Prim's algorithm with every
+// edge pushed into a priority queue of (distance, from, to), roots by a stable sort of the angles.
+void reference_log_branches(const meshik::TriangleAdjacency& adjacency, const std::vector<Eigen::Matrix3d>& rotations,
+                            std::vector<Eigen::Vector3d>& logs) {
+  const int m = static_cast<int>(logs.size());
+  using Edge = std::tuple<double, int, int>;
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
+  std::vector<char> in_tree(m, 0);
+  std::vector<int> order(m);
+  for (int j = 0; j < m; ++j) order[j] = j;
+  std::vector<double> angle(m);
+  for (int j = 0; j < m; ++j) angle[j] = logs[j].norm();
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return angle[a] < angle[b]; });
+  auto add_edges_of = [&](int from) {
+    in_tree[from] = 1;
+    for (int s = adjacency.start[from]; s < adjacency.start[from + 1]; ++s) {
+      const int to = adjacency.neighbour[s];
+      if (!in_tree[to]) frontier.emplace(meshik::rotation_distance(rotations[from], rotations[to]), from, to);
+    }
+  };
+  for (int root : order) {
+    if (in_tree[root]) continue;
+    add_edges_of(root);
+    while (!frontier.empty()) {
+      const auto [distance, from, to] = frontier.top();
+      frontier.pop();
+      if (in_tree[to]) continue;
+      logs[to] = meshik::closest_log_branch(logs[to], logs[from]);
+      add_edges_of(to);
+    }
+  }
+}
+
+TEST(RotationBranches, PrimsTreeWithAnIndexedFrontierGivesTheReferenceBranchesBitForBit) {
+  // A grid of 2 x 40 x 40 triangles in two components, rotations about a few axes near a half
+  // turn (branches differ from the principal logs), drawn from a small set so that many
+  // distances tie exactly.
+  const int side = 40;
+  std::vector<int> triangles;
+  for (int half = 0; half < 2; ++half)
+    for (int r = 0; r < side / 2; ++r)
+      for (int c = 0; c < side; ++c) {
+        const int base = half * (side / 2 + 1) * (side + 1), v = base + r * (side + 1) + c;
+        triangles.insert(triangles.end(), {v, v + 1, v + side + 2, v, v + side + 2, v + side + 1});
+      }
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleAdjacency adjacency =
+      meshik::triangle_adjacency(triangles.data(), m, 2 * (side / 2 + 1) * (side + 1));
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> pick(0, 5);
+  std::vector<Eigen::Matrix3d> palette;
+  for (int p = 0; p < 6; ++p)
+    palette.push_back(so3_exp((kPi - 0.05 * p) * Eigen::Vector3d(1.0, 0.1 * p, p % 2 ? 0.2 : -0.2).normalized()));
+  for (int trial = 0; trial < 5; ++trial) {
+    std::vector<Eigen::Matrix3d> rotations;
+    std::vector<Eigen::Vector3d> logs;
+    for (int j = 0; j < m; ++j) {
+      // Smoothly varying angle plus a palette rotation: ties and near-pi branches both occur.
+      const double angle = 0.9 * kPi * (j % (2 * side)) / (2.0 * side) + (trial == 0 ? 0.0 : 0.01 * trial);
+      rotations.push_back(palette[pick(random)] * so3_exp(Eigen::Vector3d(0, 0, j % 3 == 0 ? angle : 0.0)));
+      logs.push_back(so3_log(rotations.back()));
+    }
+    std::vector<Eigen::Vector3d> expected = logs;
+    reference_log_branches(adjacency, rotations, expected);
+    meshik::choose_consistent_log_branches(adjacency, rotations, logs);
+    int moved = 0;
+    for (int j = 0; j < m; ++j) {
+      ASSERT_EQ(logs[j], expected[j]) << "triangle " << j << ", trial " << trial;
+      moved += logs[j] != so3_log(rotations[j]);
+    }
+    EXPECT_GT(moved, 0);  // some branches are not the principal ones
+  }
+}
+
+TEST(So3, BatchedPolarDecompositionMatchesTheSvdOne) {
+  std::mt19937 random(3);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Matrix3d> matrices;
+  for (const Eigen::Vector3d& phi : test_rotation_vectors()) {
+    Eigen::Matrix3d stretch;
+    for (int e = 0; e < 9; ++e) stretch(e) = 0.3 * normal(random);
+    stretch = Eigen::Matrix3d::Identity() + stretch * stretch.transpose();  // symmetric positive definite
+    matrices.push_back(so3_exp(phi) * stretch);
+    matrices.push_back(so3_exp(phi));
+  }
+  matrices.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal());   // a reflection: the SVD path
+  matrices.push_back(Eigen::Vector3d(2, 0.5, 0).asDiagonal());  // rank 2: the SVD path
+  matrices.push_back(Eigen::Vector3d(1e6, 1, 1e-6).asDiagonal());  // condition 1e12
+  for (size_t first = 0; first < matrices.size(); first += meshik::kPolarLanes) {
+    const int count = static_cast<int>(std::min<size_t>(meshik::kPolarLanes, matrices.size() - first));
+    Eigen::Matrix3d rotation[meshik::kPolarLanes], stretch[meshik::kPolarLanes];
+    Eigen::Vector3d log[meshik::kPolarLanes];
+    meshik::polar_and_log_batch(&matrices[first], count, rotation, stretch, log);
+    for (int l = 0; l < count; ++l) {
+      const Eigen::Matrix3d& t = matrices[first + l];
+      const meshik::PolarDecomposition svd = polar_decomposition(t);
+      EXPECT_LT((rotation[l] - svd.rotation).norm(), 1e-12) << t;
+      EXPECT_LT((stretch[l] - svd.stretch).norm(), 1e-12 * std::max(1.0, t.norm())) << t;
+      EXPECT_LT((log[l] - so3_log(svd.rotation)).norm(), 1e-12) << t;
+      EXPECT_LT((rotation[l] * stretch[l] - t).norm(), 1e-13 * std::max(1.0, t.norm()));
+    }
   }
 }
 

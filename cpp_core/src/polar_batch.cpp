@@ -1,0 +1,167 @@
+// Batched Newton polar decomposition and rotation logarithm (polar_batch.h).
+#include "polar_batch.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/LU>
+
+#include "simd_clones.h"
+#include "so3.h"
+
+namespace meshik {
+
+namespace {
+
+constexpr int N = kPolarLanes;
+// Newton steps before a lane is handed to the SVD (condition numbers up to ~1e12 converge in 20).
+constexpr int kMaxSteps = 24;
+// A step smaller than this (Frobenius norm) leaves the iterate within ~1e-16 of the limit
+// (the error squares each step), so the iteration stops when every lane's step is below it.
+constexpr double kConvergedStep = 1e-9;
+// Scaling helps only far from convergence; near it, unscaled steps converge quadratically.
+constexpr double kScaleWhileStepAbove = 1e-2;
+// det(T) below this times |T|_F^3 (a near-degenerate or reflected matrix): SVD instead.
+constexpr double kMinRelativeDeterminant = 1e-10;
+
+// atan(t) for 0 <= t <= 1: reduced to |u| <= tan(pi/8) around 0 or pi/4, then fdlibm's odd
+// polynomial (accurate to an ulp or two there).
+MESHIK_LANE_INLINE double atan_unit(double t) {
+  constexpr double kTanPiOver8 = 0.41421356237309504880;
+  constexpr double kPiOver4 = 0.78539816339744830962;
+  const bool reduce = t > kTanPiOver8;
+  const double u = reduce ? (t - 1.0) / (t + 1.0) : t;
+  const double z = u * u, w = z * z;
+  const double s1 = z * (3.33333333333329318027e-01 +
+                         w * (1.42857142725034663711e-01 +
+                              w * (9.09088713343650656196e-02 +
+                                   w * (6.66107313738753120669e-02 +
+                                        w * (4.97687799461593236017e-02 + w * 1.62858201153657823623e-02)))));
+  const double s2 = w * (-1.99999999998764832476e-01 +
+                         w * (-1.11111104054623557880e-01 +
+                              w * (-7.69187620504482999495e-02 +
+                                   w * (-5.83357013379057348645e-02 + w * -3.65315727442169155270e-02))));
+  const double p = u - u * (s1 + s2);
+  return reduce ? kPiOver4 + p : p;
+}
+
+// atan2(s, c) for s >= 0 (not both zero).
+MESHIK_LANE_INLINE double atan2_upper(double s, double c) {
+  constexpr double kPiOver2 = 1.57079632679489661923, kPi = 3.14159265358979323846;
+  const double a = std::abs(c);
+  const bool steep = s > a;
+  const double t = steep ? a / s : s / std::max(a, 1e-300);
+  double angle = atan_unit(t);
+  angle = steep ? kPiOver2 - angle : angle;
+  return c < 0.0 ? kPi - angle : angle;
+}
+
+// One scaled Newton step on all lanes of x (9 rows of N lanes, row-major entries), in place;
+// step[l]: in, lane l's previous step length (it decides the scaling); out, this one's.
+MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) {
+  double c[9][N], det[N], half_g[N], half_inverse[N];
+  // Cofactors: X^{-T} = C / det X.
+  for (int l = 0; l < N; ++l) {
+    c[0][l] = x[4][l] * x[8][l] - x[5][l] * x[7][l];
+    c[1][l] = x[5][l] * x[6][l] - x[3][l] * x[8][l];
+    c[2][l] = x[3][l] * x[7][l] - x[4][l] * x[6][l];
+    c[3][l] = x[2][l] * x[7][l] - x[1][l] * x[8][l];
+    c[4][l] = x[0][l] * x[8][l] - x[2][l] * x[6][l];
+    c[5][l] = x[1][l] * x[6][l] - x[0][l] * x[7][l];
+    c[6][l] = x[1][l] * x[5][l] - x[2][l] * x[4][l];
+    c[7][l] = x[2][l] * x[3][l] - x[0][l] * x[5][l];
+    c[8][l] = x[0][l] * x[4][l] - x[1][l] * x[3][l];
+    det[l] = x[0][l] * c[0][l] + x[1][l] * c[1][l] + x[2][l] * c[2][l];
+  }
+  for (int l = 0; l < N; ++l) {
+    double norm_x = 0.0, norm_c = 0.0;
+    for (int e = 0; e < 9; ++e) {
+      norm_x += x[e][l] * x[e][l];
+      norm_c += c[e][l] * c[e][l];
+    }
+    // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2), only while far from converged.
+    const double scaled = std::sqrt(std::sqrt(norm_c / norm_x) / std::abs(det[l]));
+    const double g = step[l] > kScaleWhileStepAbove ? scaled : 1.0;
+    half_g[l] = 0.5 * g;
+    half_inverse[l] = 0.5 / (g * det[l]);
+  }
+  double change[N] = {};
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) {
+      const double next = half_g[l] * x[e][l] + half_inverse[l] * c[e][l];
+      change[l] += (next - x[e][l]) * (next - x[e][l]);
+      x[e][l] = next;
+    }
+  for (int l = 0; l < N; ++l) step[l] = std::sqrt(change[l]);
+}
+
+// Newton iteration on x (9 rows of N lanes), in place, until every lane's step is below
+// kConvergedStep or kMaxSteps. Returns in converged[l] whether lane l got there.
+MESHIK_LANE_INLINE void newton_polar_lanes(double (&x)[9][N], bool (&converged)[N]) {
+  double step[N];
+  for (int l = 0; l < N; ++l) step[l] = 1.0;
+  for (int iteration = 0; iteration < kMaxSteps; ++iteration) {
+    newton_step_lanes(x, step);
+    int pending = 0;
+    for (int l = 0; l < N; ++l) pending += !(step[l] < kConvergedStep);
+    if (pending == 0) break;
+  }
+  for (int l = 0; l < N; ++l) converged[l] = step[l] < kConvergedStep;
+}
+
+}  // namespace
+
+MESHIK_SIMD_CLONES
+void polar_and_log_batch(const Eigen::Matrix3d* t, int count, Eigen::Matrix3d* rotation,
+                         Eigen::Matrix3d* stretch, Eigen::Vector3d* log) {
+  // Lanes past count and lanes for the SVD iterate on the identity (converged at once).
+  double x[9][N];
+  bool newton[N];
+  for (int l = 0; l < N; ++l) {
+    newton[l] = false;
+    if (l < count) {
+      const Eigen::Matrix3d& m = t[l];
+      const double norm = m.norm();
+      newton[l] = m.determinant() > kMinRelativeDeterminant * norm * norm * norm;
+    }
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) x[3 * r + c][l] = newton[l] ? t[l](r, c) : (r == c ? 1.0 : 0.0);
+  }
+  bool converged[N];
+  newton_polar_lanes(x, converged);
+
+  // The logs, for lanes whose angle is below 2 pi / 3 (v = sin(theta) axis, see so3_log).
+  double log_lanes[3][N];
+  bool log_done[N];
+  for (int l = 0; l < N; ++l) {
+    const double v0 = 0.5 * (x[7][l] - x[5][l]), v1 = 0.5 * (x[2][l] - x[6][l]), v2 = 0.5 * (x[3][l] - x[1][l]);
+    const double cos_theta = std::clamp(0.5 * (x[0][l] + x[4][l] + x[8][l] - 1.0), -1.0, 1.0);
+    const double sin_theta = std::sqrt(v0 * v0 + v1 * v1 + v2 * v2);
+    const double theta = atan2_upper(sin_theta, cos_theta);
+    const double t2 = theta * theta;
+    const double theta_over_sin =
+        t2 < 1e-6 ? 1.0 + t2 / 6.0 * (1.0 + 7.0 * t2 / 60.0) : theta / std::max(sin_theta, 1e-300);
+    log_lanes[0][l] = theta_over_sin * v0;
+    log_lanes[1][l] = theta_over_sin * v1;
+    log_lanes[2][l] = theta_over_sin * v2;
+    log_done[l] = cos_theta > -0.5;
+  }
+
+  for (int l = 0; l < count; ++l) {
+    if (!newton[l] || !converged[l]) {
+      const PolarDecomposition polar = polar_decomposition(t[l]);
+      rotation[l] = polar.rotation;
+      stretch[l] = polar.stretch;
+      log[l] = so3_log(polar.rotation);
+      continue;
+    }
+    Eigen::Matrix3d& r = rotation[l];
+    for (int row = 0; row < 3; ++row)
+      for (int c = 0; c < 3; ++c) r(row, c) = x[3 * row + c][l];
+    const Eigen::Matrix3d s = r.transpose() * t[l];
+    stretch[l] = 0.5 * (s + s.transpose());
+    log[l] = log_done[l] ? Eigen::Vector3d(log_lanes[0][l], log_lanes[1][l], log_lanes[2][l]) : so3_log(r);
+  }
+}
+
+}  // namespace meshik
