@@ -123,10 +123,13 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
                        primitive: Dict[str, Any], frame_names: Sequence[str], times_accessor: int,
                        accessors: List[Dict[str, Any]], binary: BinaryBuilder) -> Dict[str, Any]:
     """The glTF JSON of one animated mesh: node (without "mesh" and "name") places mesh 0, whose one
-    primitive has the morph targets (one per frame, or a basis: extras.targetNames names them,
-    extras.frameNames the frames); animation 0 plays the weights of `times_accessor`."""
+    primitive has the morph targets (extras.targetNames: the frame names when there is one target
+    per frame; for a basis "basis j", and extras.frameNames the frames); animation 0 plays the
+    weights of `times_accessor`."""
     target_count = len(primitive["targets"])
-    target_names = list(frame_names) if target_count == len(frame_names) else [f"basis {j}" for j in range(target_count)]
+    extras: Dict[str, Any] = {"targetNames": list(frame_names)}
+    if target_count != len(frame_names):
+        extras = {"targetNames": [f"basis {j}" for j in range(target_count)], "frameNames": list(frame_names)}
     return {
         "asset": {"version": "2.0", "generator": generator},
         "extensionsUsed": list(extensions),
@@ -135,7 +138,7 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
         "scenes": [{"nodes": [0]}],
         "nodes": [dict({"mesh": 0, "name": name}, **node)],
         "meshes": [{"name": name, "primitives": [primitive], "weights": [0.0] * target_count,
-                    "extras": {"targetNames": target_names, "frameNames": list(frame_names)}}],
+                    "extras": extras}],
         "animations": [{"name": name, "samplers": [{"input": times_accessor, "output": times_accessor + 1,
                                                     "interpolation": "LINEAR"}],
                         "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]}],
@@ -181,8 +184,8 @@ def read_animation_glb(data: bytes) -> AnimationGlb:
 
 
 def frame_names_of(document: Dict[str, Any]) -> Tuple[str, ...]:
-    """The frame names a MeshIK .glb keeps in its mesh's extras (frameNames; targetNames in files
-    written before the morph basis)."""
+    """The frame names a MeshIK .glb keeps in its mesh's extras (frameNames with a morph basis, else
+    targetNames)."""
     extras = document["meshes"][0].get("extras", {})
     return tuple(extras.get("frameNames", extras.get("targetNames", [])))
 
