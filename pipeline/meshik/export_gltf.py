@@ -205,8 +205,9 @@ def key_weights_of(document: Dict[str, Any], view_bytes) -> np.ndarray:
         return read_accessor(document, view_bytes, sampler["output"]).reshape(keys, -1)
     values = np.zeros(entry["count"], dtype=np.float32)
     sparse = entry["sparse"]
-    indices = np.frombuffer(view_bytes(sparse["indices"]["bufferView"]), dtype=COMPONENT_DTYPES[sparse["indices"]["componentType"]],
-                            count=sparse["count"], offset=sparse["indices"].get("byteOffset", 0))
+    index_type = COMPONENT_DTYPES[sparse["indices"]["componentType"]]
+    indices = np.frombuffer(view_bytes(sparse["indices"]["bufferView"]), dtype=index_type, count=sparse["count"],
+                            offset=sparse["indices"].get("byteOffset", 0))
     values[indices] = np.frombuffer(view_bytes(sparse["values"]["bufferView"]), dtype="<f4", count=sparse["count"],
                                     offset=sparse["values"].get("byteOffset", 0))
     return values.reshape(keys, -1)

@@ -6,9 +6,9 @@ SHORT q_k - q_rest (the deltas share the base's dequantization, as the extension
 node's translation (the grid's origin) and uniform scale (its step) turn grid units into the
 solver's coordinates. targets="frames": one target per frame, rest + target k decodes to the grid
 point nearest frame k, the weights are one sparse accessor; targets="basis" (morph_basis): r < #frames
-SHORT targets and dense #frames x r weights whose decoding stays within BASIS_TOLERANCE grid units of
-every frame (the per-frame files' own bound), one target per frame when no smaller basis does. Elements are
-padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
+SHORT targets and dense #frames x r weights whose decoding stays within BASIS_TOLERANCE grid units
+of every frame (the per-frame files' own bound), one target per frame when no smaller basis does.
+Elements are padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
 input id. No normals: the deltas of normals would add a stream per frame; viewers compute them.
 Vertices are in meshoptimizer's vertex-cache / fetch order (what makes the streams compress);
 with meshopt every buffer view (vertex, index, targets, animation) is EXT_meshopt_compression
@@ -40,8 +40,9 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     when meshopt, compressed with EXT_meshopt_compression.
 
     rest: #V by 3; faces: #F by 3; frames: #frames by #V by 3; vertex_ids: #V ids stored per vertex;
-    fps: frames per second; targets: "basis" or "frames" (see the module). Raises ValueError for a grid finer than MAX_POSITION_BITS, ids past
-    2**24, non-finite positions or an animation too large for one .glb.
+    fps: frames per second; targets: "basis" or "frames" (see the module). Raises ValueError for a
+    grid finer than MAX_POSITION_BITS, ids past 2**24, non-finite positions, unknown targets or an
+    animation too large for one .glb.
     """
     from meshik import _meshopt
 

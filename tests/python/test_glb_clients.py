@@ -69,7 +69,8 @@ def test_every_client_decodes_every_frame_within_the_grid(jobs, variant, tmp_pat
         assert error.max() <= tolerance, (client, error.max(), tolerance)
         np.testing.assert_allclose(summary["times"], np.arange(len(solver)) / report["fps"], rtol=1e-6)
         if client == "three":  # the clip plays: at key k the mixer gives the targets the file's weights of key k
-            np.testing.assert_allclose(summary["weightsAtKeys"], read_animation_glb(glb.read_bytes()).weights, atol=1e-6)
+            weights = read_animation_glb(glb.read_bytes()).weights
+            np.testing.assert_allclose(summary["weightsAtKeys"], weights, atol=1e-6)
     # the report's error is the same measure (over the animation's bounding-box diagonal)
     points = solver.reshape(-1, 3)
     diagonal = np.linalg.norm(points.max(axis=0) - points.min(axis=0))
@@ -87,7 +88,8 @@ def test_khronos_validator_reports_no_error_or_warning(jobs, variant):
 def test_meshopt_is_the_smallest_and_quantized_needs_no_decoder(jobs):
     sizes = {label: report["compressed_outputs"]["animation.glb"]["bytes"] for label, (_, report, _) in jobs.items()}
     assert sizes["meshopt"] < sizes["meshopt per frame"] < sizes["draco"] and sizes["meshopt"] < sizes["quantized"]
-    targets = {label: report["compressed_outputs"]["animation.glb"]["morph_targets"] for label, (_, report, _) in jobs.items()}
+    targets = {label: report["compressed_outputs"]["animation.glb"]["morph_targets"]
+               for label, (_, report, _) in jobs.items()}
     frames = jobs["draco"][1]["frame_count"]
     # the bar bends smoothly: a few basis targets carry its frames
     assert targets["meshopt"] == targets["quantized"] < frames == targets["meshopt per frame"] == targets["draco"]

@@ -14,8 +14,9 @@ def sheet(side: int):
     """(rest #V by 3, faces #F by 3) of a side x side grid of unit squares, two triangles each."""
     xs, ys = np.meshgrid(np.arange(side, dtype=float), np.arange(side, dtype=float))
     rest = np.c_[xs.ravel(), ys.ravel(), np.zeros(side * side)]
-    faces = [[r * side + c, r * side + c + 1, (r + 1) * side + c] for r in range(side - 1) for c in range(side - 1)]
-    faces += [[r * side + c + 1, (r + 1) * side + c + 1, (r + 1) * side + c] for r in range(side - 1) for c in range(side - 1)]
+    corners = [(r * side + c, r * side + c + 1, (r + 1) * side + c, (r + 1) * side + c + 1)
+               for r in range(side - 1) for c in range(side - 1)]
+    faces = [[a, b, c] for a, b, c, _ in corners] + [[b, d, c] for _, b, c, d in corners]
     return rest, np.array(faces)
 
 
