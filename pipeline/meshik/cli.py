@@ -155,6 +155,10 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
                         help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
                              "(1 to 15, default 14)")
+    parser.add_argument("--glb-targets", dest="glb_targets", choices=("basis", "frames"), default="basis",
+                        help="morph targets of the meshopt / quantized .glb: basis (default: the fewest targets, "
+                             "mixed by per-frame weights, that keep every frame within the grid's rounding; one per "
+                             "frame when no smaller basis does) or frames (one target per frame)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
     parser.add_argument("--threads", type=_positive_int, default=None, metavar="N",
                         help="threads of the example-set precompute (default: all cores for pose, one per batch "
@@ -168,7 +172,8 @@ def _run_pose(args) -> int:
 
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
-                      force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits)
+                      force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
+                      glb_targets=args.glb_targets)
     if report.get("skipped") and not args.quiet:
         print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
     return 0
@@ -190,7 +195,8 @@ def _run_batch(args) -> int:
                          scheduler=args.scheduler, retries=retries, cache_mb=args.cache_mb, quiet=args.quiet,
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
-                         threads=args.threads, glb=args.glb, position_bits=args.position_bits)
+                         threads=args.threads, glb=args.glb, position_bits=args.position_bits,
+                         glb_targets=args.glb_targets)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)

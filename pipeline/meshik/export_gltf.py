@@ -17,8 +17,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from meshik.export_draco import ID_ATTRIBUTE, QuantizationGrid, decode, encode_frame
-from meshik.gltf_container import (ARRAY_BUFFER, FLOAT, UNSIGNED_INT, BinaryBuilder, accessor, glb_bytes, read_accessor,
-                                   split_glb, view_reader)
+from meshik.gltf_container import (ARRAY_BUFFER, COMPONENT_DTYPES, FLOAT, UNSIGNED_INT, BinaryBuilder, accessor,
+                                   glb_bytes, read_accessor, split_glb, view_reader)
 
 DRACO_EXTENSION = "KHR_draco_mesh_compression"
 ID_SEMANTIC = "_ORIGINAL_ID"
@@ -97,16 +97,21 @@ def rows_of_ids(vertex_ids: np.ndarray, decoded_ids: np.ndarray) -> np.ndarray:
     return order[np.searchsorted(vertex_ids[order], decoded_ids)]
 
 
-def add_frame_animation(binary: BinaryBuilder, accessors: List[Dict[str, Any]], frame_count: int, fps: float) -> int:
-    """Append the key times (frame k at k / fps seconds) and the #frames x #frames morph weights (one
-    sparse accessor: key k sets target k to 1) to `binary` and `accessors`; returns the times' accessor
-    index (the weights' is the next)."""
+def add_frame_animation(binary: BinaryBuilder, accessors: List[Dict[str, Any]], frame_count: int, fps: float,
+                        weights: Optional[np.ndarray] = None) -> int:
+    """Append the key times (frame k at k / fps seconds) and the morph weights to `binary` and
+    `accessors`: weights (#frames by #targets, dense) when given, else #frames x #frames as one sparse
+    accessor (key k sets target k to 1); returns the times' accessor index (the weights' is the next)."""
     times = (np.arange(frame_count) / fps).astype(np.float32)
-    keys = np.arange(frame_count, dtype=np.uint32)
     times_view = binary.view(times.tobytes())
+    accessors.append(accessor(times_view, FLOAT, frame_count, "SCALAR", times.reshape(-1, 1)))
+    if weights is not None:
+        values = np.asarray(weights, dtype=np.float32).reshape(-1, 1)
+        accessors.append(accessor(binary.view(values.tobytes()), FLOAT, len(values), "SCALAR", values))
+        return len(accessors) - 2
+    keys = np.arange(frame_count, dtype=np.uint32)
     weight_indices_view = binary.view((keys * (frame_count + 1)).tobytes())  # key k sets target k
     weight_values_view = binary.view(np.ones(frame_count, dtype=np.float32).tobytes())
-    accessors.append(accessor(times_view, FLOAT, frame_count, "SCALAR", times.reshape(-1, 1)))
     accessors.append({"componentType": FLOAT, "count": frame_count ** 2, "type": "SCALAR",
                       "sparse": {"count": frame_count,
                                  "indices": {"bufferView": weight_indices_view, "componentType": UNSIGNED_INT},
@@ -118,7 +123,13 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
                        primitive: Dict[str, Any], frame_names: Sequence[str], times_accessor: int,
                        accessors: List[Dict[str, Any]], binary: BinaryBuilder) -> Dict[str, Any]:
     """The glTF JSON of one animated mesh: node (without "mesh" and "name") places mesh 0, whose one
-    primitive has one morph target per frame; animation 0 plays the weights of `times_accessor`."""
+    primitive has the morph targets (extras.targetNames: the frame names when there is one target
+    per frame; for a basis "basis j", and extras.frameNames the frames); animation 0 plays the
+    weights of `times_accessor`."""
+    target_count = len(primitive["targets"])
+    extras: Dict[str, Any] = {"targetNames": list(frame_names)}
+    if target_count != len(frame_names):
+        extras = {"targetNames": [f"basis {j}" for j in range(target_count)], "frameNames": list(frame_names)}
     return {
         "asset": {"version": "2.0", "generator": generator},
         "extensionsUsed": list(extensions),
@@ -126,8 +137,8 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
         "scene": 0,
         "scenes": [{"nodes": [0]}],
         "nodes": [dict({"mesh": 0, "name": name}, **node)],
-        "meshes": [{"name": name, "primitives": [primitive], "weights": [0.0] * len(frame_names),
-                    "extras": {"targetNames": list(frame_names)}}],
+        "meshes": [{"name": name, "primitives": [primitive], "weights": [0.0] * target_count,
+                    "extras": extras}],
         "animations": [{"name": name, "samplers": [{"input": times_accessor, "output": times_accessor + 1,
                                                     "interpolation": "LINEAR"}],
                         "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]}],
@@ -142,7 +153,8 @@ class AnimationGlb:
     """What read_animation_glb finds in a MeshIK .glb.
 
     rest: #D by 3 decoded base positions (Draco order); faces: #F by 3; vertex_ids: #D;
-    frames: #frames by #D by 3 (rest + morph target k); frame_names; times: #frames seconds.
+    frames: #frames by #D by 3 (rest + the weighted morph targets); frame_names; times: #frames
+    seconds; weights: #frames by #targets, the animation's morph weights at each key.
     """
     rest: np.ndarray
     faces: np.ndarray
@@ -150,6 +162,7 @@ class AnimationGlb:
     frames: np.ndarray
     frame_names: Tuple[str, ...]
     times: np.ndarray
+    weights: np.ndarray
 
 
 def read_animation_glb(data: bytes) -> AnimationGlb:
@@ -167,15 +180,34 @@ def read_animation_glb(data: bytes) -> AnimationGlb:
     frames = np.stack([base + read_accessor(document, view_bytes, target["POSITION"]) for target in primitive["targets"]])
     return AnimationGlb(rest=decoded.vertices, faces=decoded.faces, vertex_ids=decoded.vertex_ids,
                         frames=frames.astype(np.float64), frame_names=frame_names_of(document),
-                        times=key_times_of(document, view_bytes))
+                        times=key_times_of(document, view_bytes), weights=key_weights_of(document, view_bytes))
 
 
 def frame_names_of(document: Dict[str, Any]) -> Tuple[str, ...]:
-    """The frame names a MeshIK .glb keeps in its mesh's extras (targetNames)."""
-    return tuple(document["meshes"][0].get("extras", {}).get("targetNames", []))
+    """The frame names a MeshIK .glb keeps in its mesh's extras (frameNames with a morph basis, else
+    targetNames)."""
+    extras = document["meshes"][0].get("extras", {})
+    return tuple(extras.get("frameNames", extras.get("targetNames", [])))
 
 
 def key_times_of(document: Dict[str, Any], view_bytes) -> np.ndarray:
     """#frames seconds: the input of animation 0's first sampler."""
     sampler = document["animations"][0]["samplers"][0]
     return read_accessor(document, view_bytes, sampler["input"]).reshape(-1)
+
+
+def key_weights_of(document: Dict[str, Any], view_bytes) -> np.ndarray:
+    """#keys by #targets morph weights: the output of animation 0's first sampler (dense or sparse)."""
+    sampler = document["animations"][0]["samplers"][0]
+    entry = document["accessors"][sampler["output"]]
+    keys = document["accessors"][sampler["input"]]["count"]
+    if "sparse" not in entry:
+        return read_accessor(document, view_bytes, sampler["output"]).reshape(keys, -1)
+    values = np.zeros(entry["count"], dtype=np.float32)
+    sparse = entry["sparse"]
+    index_type = COMPONENT_DTYPES[sparse["indices"]["componentType"]]
+    indices = np.frombuffer(view_bytes(sparse["indices"]["bufferView"]), dtype=index_type, count=sparse["count"],
+                            offset=sparse["indices"].get("byteOffset", 0))
+    values[indices] = np.frombuffer(view_bytes(sparse["values"]["bufferView"]), dtype="<f4", count=sparse["count"],
+                                    offset=sparse["values"].get("byteOffset", 0))
+    return values.reshape(keys, -1)

@@ -4,8 +4,11 @@ Positions and morph-target deltas are integers on one grid shared by every frame
 (KHR_mesh_quantization): the base POSITION is UNSIGNED_SHORT grid coordinates q_rest, target k is
 SHORT q_k - q_rest (the deltas share the base's dequantization, as the extension requires), and the
 node's translation (the grid's origin) and uniform scale (its step) turn grid units into the
-solver's coordinates, so rest + target k decodes to the grid point nearest frame k. Elements are
-padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
+solver's coordinates. targets="frames": one target per frame, rest + target k decodes to the grid
+point nearest frame k, the weights are one sparse accessor; targets="basis" (morph_basis): r < #frames
+SHORT targets and dense #frames x r weights whose decoding stays within BASIS_TOLERANCE grid units
+of every frame (the per-frame files' own bound), one target per frame when no smaller basis does.
+Elements are padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
 input id. No normals: the deltas of normals would add a stream per frame; viewers compute them.
 Vertices are in meshoptimizer's vertex-cache / fetch order (what makes the streams compress);
 with meshopt every buffer view (vertex, index, targets, animation) is EXT_meshopt_compression
@@ -17,28 +20,36 @@ import numpy as np
 
 from meshik.export_draco import QuantizationGrid
 from meshik.export_gltf import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document, check_vertex_ids,
-                                frame_names_of, glb_size_problem, key_times_of)
+                                frame_names_of, glb_size_problem, key_times_of, key_weights_of)
 from meshik.gltf_container import (ARRAY_BUFFER, FLOAT, MESHOPT_EXTENSION, SHORT, UNSIGNED_SHORT, BinaryBuilder,
                                    MeshoptBinaryBuilder, accessor, glb_bytes, read_accessor, view_reader)
+from meshik.morph_basis import low_rank_basis, morphed_positions
 
 QUANTIZATION_EXTENSION = "KHR_mesh_quantization"
 MAX_POSITION_BITS = 15   # deltas between grid points must fit a SHORT
+GLB_TARGETS = ("basis", "frames")
+# half a grid cell's diagonal (the rounding of the per-frame file), less a margin for viewers that sum
+# the targets in another float32 order
+BASIS_TOLERANCE = np.sqrt(3) / 2 - 1 / 16
 
 
 def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
                             vertex_ids: np.ndarray, grid: QuantizationGrid, fps: float, name: str, generator: str,
-                            meshopt: bool = True) -> bytes:
+                            meshopt: bool = True, targets: str = "basis") -> bytes:
     """GLB bytes of an animation, quantized on `grid` (which must cover rest and every frame) and,
     when meshopt, compressed with EXT_meshopt_compression.
 
     rest: #V by 3; faces: #F by 3; frames: #frames by #V by 3; vertex_ids: #V ids stored per vertex;
-    fps: frames per second. Raises ValueError for a grid finer than MAX_POSITION_BITS, ids past
-    2**24, non-finite positions or an animation too large for one .glb.
+    fps: frames per second; targets: "basis" or "frames" (see the module). Raises ValueError for a
+    grid finer than MAX_POSITION_BITS, ids past 2**24, non-finite positions, unknown targets or an
+    animation too large for one .glb.
     """
     from meshik import _meshopt
 
     if not 1 <= grid.bits <= MAX_POSITION_BITS:
         raise ValueError(f"position bits must be between 1 and {MAX_POSITION_BITS} for a quantized .glb, got {grid.bits}")
+    if targets not in GLB_TARGETS:
+        raise ValueError(f"glb targets must be one of {', '.join(GLB_TARGETS)}, got {targets!r}")
     check_vertex_ids(vertex_ids)
     frames = np.asarray(frames, dtype=np.float64)
     problem = glb_size_problem(len(frames), len(rest))
@@ -50,7 +61,9 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     new_of_old = _fetch_order(triangles, len(rest))
     old_of_new = np.argsort(new_of_old)
     base = _grid_coordinates(np.asarray(rest, dtype=np.float64)[old_of_new], grid)
-    deltas = _grid_coordinates(frames[:, old_of_new], grid) - base
+    basis = low_rank_basis(base, (frames[:, old_of_new] - np.asarray(grid.origin)) / grid.step, BASIS_TOLERANCE) \
+        if targets == "basis" else None
+    deltas = _grid_coordinates(frames[:, old_of_new], grid) - base if basis is None else basis.targets
 
     binary = MeshoptBinaryBuilder() if meshopt else BinaryBuilder()
     count = len(rest)
@@ -67,9 +80,9 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     ]
     for k, delta in enumerate(deltas):
         accessors.append(accessor(targets_view, SHORT, count, "VEC3", delta, byte_offset=k * count * 8))
-    times_accessor = add_frame_animation(binary, accessors, len(frames), fps)
+    times_accessor = add_frame_animation(binary, accessors, len(frames), fps, None if basis is None else basis.weights)
     primitive = {"attributes": {"POSITION": 0, ID_SEMANTIC: 2}, "indices": 1, "mode": 4,
-                 "targets": [{"POSITION": 3 + k} for k in range(len(frames))]}
+                 "targets": [{"POSITION": 3 + k} for k in range(len(deltas))]}
     extensions = [QUANTIZATION_EXTENSION] + ([MESHOPT_EXTENSION] if meshopt else [])
     node = {"translation": list(grid.origin), "scale": [grid.step] * 3}
     document = animation_document(name, generator, extensions, node, primitive, frame_names, times_accessor, accessors,
@@ -109,11 +122,12 @@ def read_quantized_glb(document: Dict[str, Any], binary: bytes) -> AnimationGlb:
     translation, scale = _node_transform(document["nodes"][0])
     base = read_accessor(document, view_bytes, primitive["attributes"]["POSITION"]).astype(np.float64)
     deltas = np.stack([read_accessor(document, view_bytes, target["POSITION"]) for target in primitive["targets"]])
+    weights = key_weights_of(document, view_bytes)
     faces = read_accessor(document, view_bytes, primitive["indices"]).reshape(-1, 3).astype(np.int64)
     ids = read_accessor(document, view_bytes, primitive["attributes"][ID_SEMANTIC]).reshape(-1).astype(np.int64)
     return AnimationGlb(rest=translation + scale * base, faces=faces, vertex_ids=ids,
-                        frames=translation + scale * (base + deltas), frame_names=frame_names_of(document),
-                        times=key_times_of(document, view_bytes))
+                        frames=translation + scale * morphed_positions(base, weights, deltas).astype(np.float64),
+                        frame_names=frame_names_of(document), times=key_times_of(document, view_bytes), weights=weights)
 
 
 def _node_transform(node: Dict[str, Any]) -> Tuple[np.ndarray, np.ndarray]:

@@ -35,6 +35,7 @@ class OutputErrors:
         animation = read_animation_glb(data)
         expected = self.frames[:, rows_of_ids(self.vertex_ids, animation.vertex_ids)]
         self.glbs[name] = {"variant": variant, "bytes": len(data), "position_bits": grid.bits, "grid_step": grid.step,
+                           "morph_targets": int(animation.weights.shape[1]),
                            "max_position_error": self._error(animation.frames, expected)}
 
     def _error(self, decoded: np.ndarray, expected: np.ndarray) -> float:
@@ -47,7 +48,7 @@ class OutputErrors:
 
     def report(self) -> Dict[str, Dict[str, Any]]:
         """{"frames/*.drc": {files, bytes, max_position_error}, "<job>.glb": {variant, bytes,
-        position_bits, grid_step, max_position_error}}, only the outputs written."""
+        position_bits, grid_step, morph_targets, max_position_error}}, only the outputs written."""
         entries: Dict[str, Dict[str, Any]] = {}
         if self.drc_frames:
             entries["frames/*.drc"] = {"files": self.drc_frames, "bytes": self.drc_bytes,

@@ -3,9 +3,10 @@
     report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
 
 Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
-"original_id" attribute), <job>.glb (one morph target per frame + animation; glb="meshopt": positions
-and deltas quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same
-without meshopt, "draco": a Draco base mesh and float32 targets),
+"original_id" attribute), <job>.glb (morph targets + animation; glb="meshopt": positions and deltas
+quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same without
+meshopt, both with a low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
+"draco": a Draco base mesh and one float32 target per frame),
 frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
 output vertex, when simplified), and report.json (written last). Nothing is created when the
 input is bad; an interrupted job leaves no file under its final name; a job whose outputs are
@@ -24,7 +25,7 @@ from meshik import constraints as constraint_files
 from meshik.errors import PipelineError
 from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
 from meshik.export_gltf import animation_glb, glb_size_problem
-from meshik.export_gltf_quantized import MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export_gltf_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
 from meshik.output_errors import OutputErrors
 from meshik.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing import PosedAnimation, pose_animation
@@ -32,7 +33,7 @@ from meshik.progress_bars import stage_progress
 from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
 from meshik.staging import StagedOutput, check_writable, is_complete, read_report
 
-REPORT_VERSION = 1
+REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
 GLB_VARIANTS = ("meshopt", "quantized", "draco")
 DEFAULT_POSITION_BITS = 14
@@ -43,7 +44,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
-             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS, within=None) -> Dict[str, Any]:
+             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS,
+             glb_targets: str = "basis", within=None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -55,6 +57,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
     glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
+    glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
             is then replaced in one folder swap (meshik.staging).
     The returned report has "skipped": True when the job was already complete.
@@ -69,6 +72,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if not 1 <= quantization_bits <= 30:
         raise PipelineError(f"quantization bits must be between 1 and 30, got {quantization_bits}")
     _check_choice("glb variant", glb, GLB_VARIANTS)
+    _check_choice("glb targets", glb_targets, GLB_TARGETS)
     if not 1 <= position_bits <= MAX_POSITION_BITS:
         raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
@@ -76,7 +80,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if feature_space:
         solver_options["feature_space"] = feature_space
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
-                  (glb, position_bits) if "glb" in formats else None)
+                  (glb, position_bits, glb_targets) if "glb" in formats else None)
     if not force and is_complete(out_dir, key):
         return dict(read_report(out_dir), skipped=True)
 
@@ -121,7 +125,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     writing = stage_progress(f"{name}: writing", _file_count(formats, len(resolved.frame_names)), quiet, stream)
     with StagedOutput(out_dir, within) as staged, writing as advance:
         _export(staged, name, posed_meshes.rest, posed_meshes.faces, posed, resolved.frame_names, vertex_ids,
-                simplified is not None, grid, constraint_set.fps, formats, advance, (glb, glb_grid), errors)
+                simplified is not None, grid, constraint_set.fps, formats, advance, (glb, glb_grid, glb_targets), errors)
         clock.lap("export")
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
@@ -153,7 +157,7 @@ def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict
             formats: Tuple[str, ...], quantization_bits: int, glb_options=None) -> str:
     """A hash of everything a job's outputs depend on: the constraint file's bytes, the size and
     modification time of every mesh file, and the options (glb_options: the .glb's variant and
-    position bits, None without a .glb)."""
+    position bits and targets, None without a .glb)."""
     meshes = [constraint_set.rest, *constraint_set.examples]
     state = {
         "constraints": hashlib.sha256(constraint_set.source.read_bytes()).hexdigest(),
@@ -188,7 +192,7 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
             formats: Tuple[str, ...], advance: Callable[[], None], glb_choice: Tuple[str, Any],
             errors: OutputErrors) -> None:
     """Write every requested format into the staging folder; advance() after each file.
-    glb_choice: (variant, grid) of the .glb; errors: records the bytes and position error of the
+    glb_choice: (variant, grid, targets) of the .glb; errors: records the bytes and position error of the
     .drc frames and the .glb."""
     for fmt in formats:
         if fmt == "drc":
@@ -198,12 +202,12 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 errors.add_drc_frame(data)
                 advance()
         elif fmt == "glb":
-            variant, glb_grid = glb_choice
+            variant, glb_grid, targets = glb_choice
             if variant == "draco":
                 data = animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, grid, fps, name, GENERATOR)
             else:
                 data = quantized_animation_glb(rest, faces, posed.vertices, frame_names, vertex_ids, glb_grid, fps, name,
-                                               GENERATOR, meshopt=variant == "meshopt")
+                                               GENERATOR, meshopt=variant == "meshopt", targets=targets)
             staged.write(f"{name}.glb", data)
             errors.add_glb(f"{name}.glb", variant, data, glb_grid)
             advance()

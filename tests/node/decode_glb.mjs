@@ -4,7 +4,8 @@
 // three: three.js GLTFLoader (MeshoptDecoder from the meshoptimizer package), frame k = the mesh's
 //   world positions after its AnimationMixer is set to key k's time (the morph weights the clip plays).
 // transform: glTF-Transform (core + extensions; meshopt and Draco decoders from their npm packages),
-//   frame k = node transform applied to base + morph target k.
+//   frame k = node transform applied to base + sum_j w_kj morph target j, w_kj the animation's
+//   weights output at key k (dense, or sparse as glTF-Transform expands it).
 // OUT.bin: #frames x #V x 3 float64 positions, then #V float64 vertex ids (_ORIGINAL_ID), in the
 // file's vertex order. Stdout: JSON {vertices, frames, triangles, times, weightsAtKeys (three only)}.
 import fs from 'node:fs';
@@ -84,19 +85,27 @@ async function withTransform() {
   const position = primitive.getAttribute('POSITION');
   const count = position.getCount();
   const element = [], delta = [];
-  const frames = primitive.listTargets().map((target) => {
-    const moved = target.getAttribute('POSITION');
+  const targets = primitive.listTargets().map((target) => target.getAttribute('POSITION'));
+  const sampler = document.getRoot().listAnimations()[0].listSamplers()[0];
+  const weights = sampler.getOutput().getArray();
+  const keys = sampler.getInput().getCount();
+  const frames = Array.from({ length: keys }, (_, k) => {
     const frame = new Float64Array(count * 3);
     for (let i = 0; i < count; i++) {
       position.getElement(i, element);
-      moved.getElement(i, delta);
-      for (let c = 0; c < 3; c++) frame[3 * i + c] = t[c] + s[c] * (element[c] + delta[c]);
+      const point = element.slice(0, 3);
+      targets.forEach((moved, j) => {
+        const w = weights[k * targets.length + j];
+        if (w === 0) return;
+        moved.getElement(i, delta);
+        for (let c = 0; c < 3; c++) point[c] += w * delta[c];
+      });
+      for (let c = 0; c < 3; c++) frame[3 * i + c] = t[c] + s[c] * point[c];
     }
     return frame;
   });
   const idAttribute = primitive.getAttribute('_ORIGINAL_ID');
   const ids = Float64Array.from({ length: count }, (_, i) => idAttribute.getScalar(i));
-  const sampler = document.getRoot().listAnimations()[0].listSamplers()[0];
   emit(frames, ids, { vertices: count, frames: frames.length, triangles: primitive.getIndices().getCount() / 3,
                       times: Array.from(sampler.getInput().getArray()) });
 }

@@ -1,4 +1,5 @@
-"""Every .glb variant (meshopt, quantized, draco) read back by clients the project did not write:
+"""Every .glb variant (meshopt and quantized with a morph basis, meshopt with one target per frame,
+draco) read back by clients the project did not write:
 three.js GLTFLoader with the meshoptimizer package's MeshoptDecoder (playing the clip to each key)
 and glTF-Transform, both in Node (tests/node/decode_glb.mjs); each frame matches the solver's
 within the variant's grid; the Khronos validator reports nothing above info."""
@@ -8,6 +9,7 @@ import subprocess
 import numpy as np
 import pytest
 
+from meshik.export_gltf import read_animation_glb
 from meshik.meshio import load_mesh
 from meshik.pipeline import pose_job
 from pipeline_clients import ROOT, validate_and_check_no_errors
@@ -15,20 +17,24 @@ from pipeline_clients import ROOT, validate_and_check_no_errors
 DECODER = ROOT / "tests" / "node" / "decode_glb.mjs"
 # three.js's GLTFLoader decodes Draco only through DRACOLoader's web worker and wasm, which Node lacks:
 # the Draco variant is read by glTF-Transform here and by Google's draco_decoder in test_pipeline_pose.
-CLIENTS = {"meshopt": ("three", "transform"), "quantized": ("three", "transform"), "draco": ("transform",)}
+CLIENTS = {"meshopt": ("three", "transform"), "meshopt per frame": ("three", "transform"),
+           "quantized": ("three", "transform"), "draco": ("transform",)}
+# label: (--glb, --glb-targets)
+JOBS = {"meshopt": ("meshopt", "basis"), "meshopt per frame": ("meshopt", "frames"), "quantized": ("quantized", "basis"),
+        "draco": ("draco", "basis")}
 
 
 @pytest.fixture(scope="module", params=[None, 160], ids=["full", "simplified"])
 def jobs(request, samples_dir, tmp_path_factory):
-    """{variant: (job folder, report, #frames by #V by 3 solver frames)} for the bar sample, full
+    """{label: (job folder, report, #frames by #V by 3 solver frames)} for the bar sample, full
     resolution and simplified (vertex ids that are not the rows)."""
     out = {}
-    for variant in CLIENTS:
-        folder = tmp_path_factory.mktemp(f"{variant}")
+    for label, (variant, targets) in JOBS.items():
+        folder = tmp_path_factory.mktemp(variant)
         report = pose_job(samples_dir / "bar" / "animation.json", folder, formats=("drc", "glb", "ply"), glb=variant,
-                          simplify=request.param, quiet=True)
+                          glb_targets=targets, simplify=request.param, quiet=True)
         frames = np.stack([load_mesh(folder / "frames" / f"{f['name']}.ply")[0] for f in report["frames"]])
-        out[variant] = (folder, report, frames)
+        out[label] = (folder, report, frames)
     return out
 
 
@@ -48,7 +54,7 @@ def test_every_client_decodes_every_frame_within_the_grid(jobs, variant, tmp_pat
     folder, report, solver = jobs[variant]
     glb = folder / "animation.glb"
     entry = report["compressed_outputs"]["animation.glb"]
-    assert entry["variant"] == variant and entry["bytes"] == glb.stat().st_size == report["outputs"]["animation.glb"]
+    assert entry["variant"] == JOBS[variant][0] and entry["bytes"] == glb.stat().st_size == report["outputs"]["animation.glb"]
     ids = np.arange(len(solver[0])) if report["simplification"] is None \
         else np.loadtxt(folder / "vertex_ids.txt", dtype=np.int64).reshape(-1)
     row_of_id = {int(i): row for row, i in enumerate(ids)}
@@ -62,8 +68,9 @@ def test_every_client_decodes_every_frame_within_the_grid(jobs, variant, tmp_pat
         error = np.linalg.norm(frames - expected, axis=2)
         assert error.max() <= tolerance, (client, error.max(), tolerance)
         np.testing.assert_allclose(summary["times"], np.arange(len(solver)) / report["fps"], rtol=1e-6)
-        if client == "three":  # the clip plays: at key k the mixer gives target k weight 1, the others 0
-            np.testing.assert_allclose(summary["weightsAtKeys"], np.eye(len(solver)), atol=1e-6)
+        if client == "three":  # the clip plays: at key k the mixer gives the targets the file's weights of key k
+            weights = read_animation_glb(glb.read_bytes()).weights
+            np.testing.assert_allclose(summary["weightsAtKeys"], weights, atol=1e-6)
     # the report's error is the same measure (over the animation's bounding-box diagonal)
     points = solver.reshape(-1, 3)
     diagonal = np.linalg.norm(points.max(axis=0) - points.min(axis=0))
@@ -79,8 +86,13 @@ def test_khronos_validator_reports_no_error_or_warning(jobs, variant):
 
 
 def test_meshopt_is_the_smallest_and_quantized_needs_no_decoder(jobs):
-    sizes = {variant: report["compressed_outputs"]["animation.glb"]["bytes"] for variant, (_, report, _) in jobs.items()}
-    assert sizes["meshopt"] < sizes["quantized"] < sizes["draco"]
+    sizes = {label: report["compressed_outputs"]["animation.glb"]["bytes"] for label, (_, report, _) in jobs.items()}
+    assert sizes["meshopt"] < sizes["meshopt per frame"] < sizes["draco"] and sizes["meshopt"] < sizes["quantized"]
+    targets = {label: report["compressed_outputs"]["animation.glb"]["morph_targets"]
+               for label, (_, report, _) in jobs.items()}
+    frames = jobs["draco"][1]["frame_count"]
+    # the bar bends smoothly: a few basis targets carry its frames
+    assert targets["meshopt"] == targets["quantized"] < frames == targets["meshopt per frame"] == targets["draco"]
     document = {}
     for variant, (folder, _, _) in jobs.items():
         data = (folder / "animation.glb").read_bytes()

@@ -1,6 +1,6 @@
 """The quantized / meshopt .glb writer and its meshoptimizer binding: the codecs round-trip, bad
 input is refused with one clear line, the grid covers every frame, vertices no triangle uses are
-kept, and the CLI's --glb / --position-bits reach the file and report.json."""
+kept, and the CLI's --glb / --position-bits / --glb-targets reach the file and report.json."""
 import json
 
 import numpy as np
@@ -90,9 +90,14 @@ def test_cli_glb_options_reach_the_file_and_the_report(samples_dir, tmp_path, ca
     document, _ = split_glb((tmp_path / "q" / "animation.glb").read_bytes())
     assert document["extensionsRequired"] == ["KHR_mesh_quantization"]
     assert document["nodes"][0]["scale"][0] == pytest.approx(entry["grid_step"])
+    assert entry["morph_targets"] < report["frame_count"]  # the default basis: the bar's frames are low-rank
+    assert main(["pose", str(constraints), "--out", str(tmp_path / "f"), "--glb-targets", "frames", "-q"]) == 0
+    report = json.loads((tmp_path / "f" / "report.json").read_text())
+    assert report["compressed_outputs"]["animation.glb"]["morph_targets"] == report["frame_count"]
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "16", "-q"]) == 1
     assert "position bits must be between 1 and 15, got 16" in capsys.readouterr().err
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "3", "-q"]) == 1
     assert "raise --position-bits" in capsys.readouterr().err  # a grid that would blur every frame
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--glb", "gzip"]) == 2
+    assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--glb-targets", "pca"]) == 2
     assert not (tmp_path / "bad").exists()

@@ -68,7 +68,7 @@ viewer.setFrame = (k) => {
   showFrameNumber(k);
 };
 
-// The mesh's current morph weights (one per frame).
+// The mesh's current morph weights (one per target: per frame, or per basis target).
 viewer.influences = () => (viewer.mesh ? Array.from(viewer.mesh.morphTargetInfluences) : []);
 
 // Move the slider and the label to frame k.
@@ -97,7 +97,7 @@ async function show(job) {
   gltf.scene.traverse((object) => { if (object.isMesh && !viewer.mesh) viewer.mesh = object; });
   scene.add(gltf.scene);
   viewer.fps = report.fps;
-  viewer.frameCount = viewer.mesh.morphTargetInfluences.length;
+  viewer.frameCount = gltf.animations[0].tracks[0].times.length;  // keys: targets may be a basis
   viewer.mixer = new THREE.AnimationMixer(gltf.scene);
   viewer.action = viewer.mixer.clipAction(gltf.animations[0]).play();
   viewer.playing = true;
