@@ -11,6 +11,7 @@
 #include "sparse/numeric.h"
 #include "sparse/simd.h"
 #include "sparse/triangular_solve.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -133,24 +134,25 @@ const std::vector<int>& SparseCholesky::permutation() const { return impl_->anal
 
 int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
 
-void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns) const {
+void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
+  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads));
 }
 
-void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns) const {
+void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  backward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads));
 }
 
 void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int columns,
-                                                  const std::vector<int>& rows) const {
+                                                  const std::vector<int>& rows, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
   for (int r : rows)
     if (r < 0 || r >= size())
       throw std::invalid_argument("SparseCholesky: backward solve row " + std::to_string(r) + " out of range [0, " +
                                   std::to_string(size()) + ")");
-  backward_solve(impl_->analysis(), impl_->factor, reach_to_roots(impl_->analysis(), rows), x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, reach_to_roots(impl_->analysis(), rows), x, stride, columns,
+                 thread_count(threads));
 }
 
 int SparseCholesky::size() const { return static_cast<int>(impl_->analysis().perm.size()); }

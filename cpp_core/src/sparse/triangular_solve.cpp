@@ -1,5 +1,7 @@
 #include "sparse/triangular_solve.h"
 
+#include <algorithm>
+
 #include "sparse/simd.h"
 
 namespace meshik::sparse {
@@ -238,27 +240,31 @@ struct Backward {
 };
 
 // Runs Pass on chunks of at most kMaxVectors vectors covering the first `columns` (rounded up to
-// whole vectors) of each row.
+// whole vectors) of each row; with team > 1, in groups of fewer vectors, one thread per group
+// (each column's arithmetic is the same in any group, so the result is the same bits).
 template <template <int> class Pass>
 void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach, double* x, int stride,
-               int columns) {
-  const int width = round_up_to_lanes(columns);
-  for (int c0 = 0; c0 < width; c0 += kMaxVectors * kLanes) {
-    const int vectors = (width - c0) / kLanes < kMaxVectors ? (width - c0) / kLanes : kMaxVectors;
-    Pass<kMaxVectors>::dispatch(vectors, a, factor, reach, x + c0, stride);
+               int columns, int team) {
+  const int vectors = round_up_to_lanes(columns) / kLanes;
+  const int per_group = std::max(1, std::min(kMaxVectors, (vectors + team - 1) / std::max(team, 1)));
+  const int groups = (vectors + per_group - 1) / per_group;
+#pragma omp parallel for schedule(static) num_threads(std::max(1, std::min(team, groups))) if (team > 1 && groups > 1)
+  for (int g = 0; g < groups; ++g) {
+    const int first = g * per_group;
+    Pass<kMaxVectors>::dispatch(std::min(per_group, vectors - first), a, factor, reach, x + first * kLanes, stride);
   }
 }
 
 }  // namespace
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                   int columns) {
-  by_chunks<Forward>(analysis, factor, nullptr, x, stride, columns);
+                   int columns, int team) {
+  by_chunks<Forward>(analysis, factor, nullptr, x, stride, columns, team);
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                    int columns) {
-  by_chunks<Backward>(analysis, factor, nullptr, x, stride, columns);
+                    int columns, int team) {
+  by_chunks<Backward>(analysis, factor, nullptr, x, stride, columns, team);
 }
 
 Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
@@ -283,8 +289,8 @@ Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, const Reach& reach, double* x,
-                    int stride, int columns) {
-  by_chunks<Backward>(analysis, factor, &reach, x, stride, columns);
+                    int stride, int columns, int team) {
+  by_chunks<Backward>(analysis, factor, &reach, x, stride, columns, team);
 }
 
 }  // namespace meshik::sparse
