@@ -18,6 +18,11 @@ namespace {
 
 constexpr int L = kLanes;
 
+// The passes hand out their chunks (and rows, kRowsPerTask at a time) dynamically: the partition,
+// not the schedule, fixes the result, and a thread the system deschedules (the machine's other
+// work) then delays its team by one task, not by its whole share.
+constexpr int kRowsPerTask = 2048;
+
 // Adds one batch's J^T J (#E by #E, lower triangle, per lane) and J^T F (#E, per lane).
 // out: a blend_batch output.
 MESHIK_SIMD_CLONES
@@ -312,13 +317,13 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   {
     // Every system row starts as -K_fh x_h in its first 3 columns and zero in the others; the
     // extra rows start at zero.
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, kRowsPerTask)
     for (int u = 0; u < all_rows; ++u) {
       double* row = rhs_ + static_cast<size_t>(u) * stride_;
       for (int c = 0; c < 3; ++c) row[c] = u < rows ? -coupling_[3 * u + c] : 0.0;
       std::fill(row + 3, row + stride_, 0.0);
     }
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
     for (int chunk = 0; chunk < chunks; ++chunk) assemble_chunk(weights, with_jacobian, source.data(), chunk);
   }
   // The chunks' shares of their shared rows and their sums, in chunk order.
@@ -350,7 +355,7 @@ void PoseEvaluator::sum_chunks(std::vector<double>& per_chunk, int size) const {
 void PoseEvaluator::gather_vertices(double* vertices) const {
   const std::vector<int>& unknown_of_vertex = system_.unknown_of_vertex();
   const std::vector<int>& handle_of_vertex = system_.handle_of_vertex();
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, kRowsPerTask)
   for (int v = 0; v < set_.num_vertices; ++v) {
     const double* from = set_.rest.data() + 3 * static_cast<size_t>(v);
     if (unknown_of_vertex[v] >= 0) {
@@ -387,7 +392,7 @@ double PoseEvaluator::pose_and_residual(double* vertices, std::vector<int>& inve
 #pragma omp parallel num_threads(team_)
   {
     gather_vertices(vertices);  // a work-shared loop: its barrier precedes the residuals
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 1)
     for (int chunk = 0; chunk < chunks; ++chunk) residual_chunk(vertices, chunk);
   }
   double energy = 0.0;
@@ -409,7 +414,7 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
   const int chunks = partition_.num_chunks();
   const double* weights = at.weights.data();
-#pragma omp parallel for schedule(static) num_threads(team_)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
   for (int chunk = 0; chunk < chunks; ++chunk) {
     float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(k);
     double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
@@ -442,7 +447,7 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
   const int chunks = partition_.num_chunks();
   const int outer_size = 3 * k * stride_;
-#pragma omp parallel for schedule(static) num_threads(team_)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
   for (int chunk = 0; chunk < chunks; ++chunk)
     add_outer_products(rhs_, partition_.row_start[chunk], partition_.row_start[chunk + 1], nrhs, stride_,
                        outer_products_.data() + static_cast<size_t>(chunk) * outer_size);
