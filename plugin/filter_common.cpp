@@ -47,9 +47,9 @@ ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList&
 }
 
 std::shared_ptr<const ExampleSet> exampleSetOf(SolverCache& cache, ExampleLayers& layers,
-                                               const ProgressCallback& progress) {
+                                               const ProgressCallback& progress, int threads) {
   try {
-    return cache.exampleSet(std::move(layers.arrays), progress);
+    return cache.exampleSet(std::move(layers.arrays), progress, threads);
   } catch (const InputError& error) {
     // The core numbers the examples from 0 in the order given: name the layer it means.
     static const QRegularExpression example_number(QStringLiteral("^example (\\d+)\\b"));

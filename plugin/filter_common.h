@@ -38,9 +38,10 @@ ExampleLayers readExampleLayers(MeshDocument& document, const RichParameterList&
 
 // The example set of `layers` (moving their arrays into the cache, which may reuse its previous
 // one). Bad input (meshik::InputError: a non-finite coordinate, a degenerate rest triangle, ...)
-// comes back as an MLException that also names the layer concerned.
+// comes back as an MLException that also names the layer concerned. threads: of the precompute
+// (0 = all cores).
 std::shared_ptr<const ExampleSet> exampleSetOf(SolverCache& cache, ExampleLayers& layers,
-                                               const ProgressCallback& progress);
+                                               const ProgressCallback& progress, int threads = 0);
 
 // The layer a filter writes its #V by 3 `positions` to: the rest layer itself when `in_place`,
 // else a new copy of it (selection included) labelled "MeshIK <what> of <rest label>", which does

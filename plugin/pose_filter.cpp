@@ -30,6 +30,11 @@ RichParameterList poseParameters(const MeshDocument& document) {
       "Write the pose into the current (rest) layer instead of a new layer \"MeshIK pose of ...\". The new "
       "layer keeps the rest layer's selection and does not become the current layer, so the filter can "
       "run again on the same rest layer and handles (reusing its factorization)."));
+  parameters.addParam(RichInt(
+      "threads", 0, "Threads",
+      "Threads of the precompute and of the solve: 0 = all cores, 1 = serial. The pose is the same for any "
+      "count. When several filters run at once (e.g. pymeshlab called from several Python threads), give "
+      "each the cores divided by their number."));
   return parameters;
 }
 
@@ -46,13 +51,15 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   options.feature_space = featureSpace(parameters);
   options.max_iterations = parameters.getInt("iterations");
   options.weight_regularization = parameters.getFloat("weightregularization");
+  options.threads = parameters.getInt("threads");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
+  if (options.threads < 0) throw MLException("threads: expected 0 (all cores) or a count of at least 1");
   if (!(options.weight_regularization >= 0.0))
     throw MLException("weightregularization: expected a number >= 0");
 
   QElapsedTimer clock;
   clock.start();
-  const auto example_set = exampleSetOf(cache, layers, progressRange(callback, 2, 30));
+  const auto example_set = exampleSetOf(cache, layers, progressRange(callback, 2, 30), options.threads);
   const qint64 precompute_ms = clock.restart();
   bool reused = false;
   const auto solver =

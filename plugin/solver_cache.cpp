@@ -9,13 +9,13 @@ bool sameInputs(const ExampleSetInputs& a, const ExampleSetInputs& b) {
 
 bool sameOptions(const SolverOptions& a, const SolverOptions& b) {
   return a.feature_space == b.feature_space && a.weight_regularization == b.weight_regularization &&
-         a.max_iterations == b.max_iterations && a.tolerance == b.tolerance;
+         a.max_iterations == b.max_iterations && a.tolerance == b.tolerance && a.threads == b.threads;
 }
 
 }  // namespace
 
 std::shared_ptr<const ExampleSet> SolverCache::exampleSet(ExampleSetInputs inputs,
-                                                          const ProgressCallback& progress) {
+                                                          const ProgressCallback& progress, int threads) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (example_set_ && sameInputs(inputs, example_inputs_)) return example_set_;
   MeshView rest;
@@ -25,7 +25,7 @@ std::shared_ptr<const ExampleSet> SolverCache::exampleSet(ExampleSetInputs input
   rest.num_triangles = static_cast<int>(inputs.triangles.size() / 3);
   std::vector<const double*> examples;
   for (const std::vector<double>& example : inputs.examples) examples.push_back(example.data());
-  auto example_set = std::make_shared<const ExampleSet>(rest, examples, progress);
+  auto example_set = std::make_shared<const ExampleSet>(rest, examples, progress, threads);
   example_inputs_ = std::move(inputs);
   example_set_ = example_set;
   solver_.reset();

@@ -21,8 +21,10 @@ struct ExampleSetInputs {
 class SolverCache {
  public:
   // The example set built from `inputs`: the previous one when the inputs equal the previous
-  // call's, else a new one (validated and precomputed here; throws meshik::InputError).
-  std::shared_ptr<const ExampleSet> exampleSet(ExampleSetInputs inputs, const ProgressCallback& progress);
+  // call's, else a new one (validated and precomputed here on `threads` threads, 0 = all cores;
+  // throws meshik::InputError).
+  std::shared_ptr<const ExampleSet> exampleSet(ExampleSetInputs inputs, const ProgressCallback& progress,
+                                               int threads = 0);
 
   // A solver over `examples` for #H `handles` and `options`: the previous one when all three
   // equal the previous call's, else a new one (factored here; throws meshik::InputError).

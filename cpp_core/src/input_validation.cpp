@@ -115,6 +115,8 @@ void validate_options(const SolverOptions& options) {
   if (!(std::isfinite(options.tolerance) && options.tolerance >= 0.0))
     throw InputError("tolerance must be finite and >= 0, got " +
                      std::to_string(options.tolerance));
+  if (options.threads < 0)
+    throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(options.threads));
   if (options.max_iterations < 0)
     throw InputError("max_iterations must be >= 0, got " +
                      std::to_string(options.max_iterations));

@@ -12,7 +12,7 @@
 
 namespace meshik {
 
-LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) {
+LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, int team) {
   const int k = set.num_examples;
   const int num_handles = static_cast<int>(system.handles().size());
   schur_ = Eigen::MatrixXd::Zero(k, k);
@@ -24,7 +24,7 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system) 
   // on the unknowns coupled to a handle (the backward solve along their tree paths only).
   const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
   EvaluationBuffers buffers;
-  PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers);
+  PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers, team);
   PoseEvaluation at_rest;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
   evaluator.evaluate_system(zero.data(), at_rest);

@@ -23,8 +23,8 @@ class LinearStart {
  public:
   // set / system: the example set and its factored handle system. One Gauss-Newton system (the
   // forward solve of 3 (#E + 1) right-hand sides) and the backward solve on the handles' tree
-  // paths.
-  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system);
+  // paths. team: threads of those passes (a thread_count; the same bits for any team).
+  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, int team = 1);
 
   // targets: #H by 3 handle positions; regularization: kappa >= 0. Returns #E weights.
   Eigen::VectorXd weights(const double* targets, double regularization) const;

@@ -18,6 +18,11 @@ namespace {
 
 constexpr int L = kLanes;
 
+// The passes hand out their chunks (and rows, kRowsPerTask at a time) dynamically: the partition,
+// not the schedule, fixes the result, and a thread the system deschedules (the machine's other
+// work) then delays its team by one task, not by its whole share.
+constexpr int kRowsPerTask = 2048;
+
 // Adds one batch's J^T J (#E by #E, lower triangle, per lane) and J^T F (#E, per lane).
 // out: a blend_batch output.
 MESHIK_SIMD_CLONES
@@ -42,16 +47,15 @@ void accumulate_jacobian_products(const double* __restrict out, int k, double* _
 }
 
 // Asks the L2 cache for the rows of rhs (rows of `stride` doubles) that the `count` corners
-// (vertices) will update, ahead of the scatter: the rows are in the factor's order, so
-// neighbouring triangles' rows are far apart. (A read hint into L2 measured faster than a write
-// hint into L1, which competes with the features' stream.)
-void prefetch_rows(const double* rhs, int stride, const int* unknown_of_vertex, const int* corners,
-                   int count) {
+// will update, ahead of the scatter. rows: the corners' rows (AssemblyPartition::corner_row, -1
+// for none); the rows are in the factor's order, so neighbouring triangles' rows are far apart.
+// (A read hint into L2 measured faster than a write hint into L1, which competes with the
+// features' stream.)
+void prefetch_rows(const double* rhs, int stride, const int* rows, int count) {
   constexpr int kLineDoubles = 64 / sizeof(double);
   for (int i = 0; i < count; ++i) {
-    const int u = unknown_of_vertex[corners[i]];
-    if (u < 0) continue;
-    const double* row = rhs + static_cast<size_t>(u) * stride;
+    if (rows[i] < 0) continue;
+    const double* row = rhs + static_cast<size_t>(rows[i]) * stride;
     for (int e = 0; e < stride; e += kLineDoubles) __builtin_prefetch(row + e, 0, 2);
   }
 }
@@ -93,15 +97,13 @@ MESHIK_LANE_INLINE void transpose_rows(LaneRow (&r)[L]) {
 // row of rhs (rows of `stride` doubles, layout of PoseEvaluator::rhs_). out: blend_batch's output;
 // stride: a multiple of kLanes; source: `stride` entries, for each column of rhs the row of out
 // holding its first column (the next row holds the second), or -1 for a padding column (see
-// column_sources); lanes: triangles in the batch; triangles (lanes by 3) and gradient (lanes by
-// 6): the batch's.
+// column_sources); lanes: triangles in the batch; rows (lanes by 3): the row of rhs each corner
+// adds to (AssemblyPartition::corner_row, -1 for none); gradient (lanes by 6): the batch's.
 // Eight columns at a time, the batch's rows are transposed in registers, so that each triangle's
 // values are one vector per column block.
 MESHIK_SIMD_CLONES
-void scatter_batch(const double* out, const int* source, int stride, int lanes, const int* triangles,
-                   const double* gradient, const int* unknown_of_vertex, double* rhs) {
-  int rows[3 * L];
-  for (int e = 0; e < 3 * lanes; ++e) rows[e] = unknown_of_vertex[triangles[e]];
+void scatter_batch(const double* out, const int* source, int stride, int lanes, const int* rows,
+                   const double* gradient, double* rhs) {
   for (int block = 0; block < stride; block += L) {
     LaneRow first[L], second[L];
     for (int i = 0; i < L; ++i) {
@@ -223,25 +225,30 @@ double* aligned_start(std::vector<double>& storage, size_t count) {
 
 PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system,
                              FeatureSpace space, double regularization, const double* targets,
-                             EvaluationBuffers& buffers)
+                             EvaluationBuffers& buffers, int team)
     : set_(set),
       system_(system),
+      partition_(system.partition()),
       space_(space),
       regularization_(regularization),
       targets_(targets),
+      team_(team),
       coupling_(buffers.coupling),
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
-      batch_out_(blend_batch_size(set.num_examples)),
+      batch_out_(static_cast<size_t>(partition_.num_chunks()) * blend_batch_size(set.num_examples)),
       residual_(buffers.residual),
-      jtj_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
-      jts_lanes_(static_cast<size_t>(set.num_examples) * L),
-      curvature_lanes_(static_cast<size_t>(set.num_examples) * set.num_examples * L),
-      curvature_scratch_(curvature_scratch_size(set.num_examples)),
-      outer_products_(static_cast<size_t>(3 * set.num_examples) *
+      jtj_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * set.num_examples * L),
+      jts_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * L),
+      handle_jts_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples),
+      curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * set.num_examples * L),
+      curvature_scratch_(static_cast<size_t>(system.partition().num_chunks()) * curvature_scratch_size(set.num_examples)),
+      chunk_energy_(system.partition().num_chunks()),
+      chunk_inverted_(system.partition().num_chunks()),
+      outer_products_(static_cast<size_t>(system.partition().num_chunks()) * 3 * set.num_examples *
                       row_width(3 * (set.num_examples + 1))) {
   const int k = set.num_examples;
-  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows()) *
+  rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
   coupling_.resize(3 * static_cast<size_t>(system.num_rows()));
   residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
@@ -265,46 +272,70 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
 }
 
-void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
+void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, const int* source, int chunk) {
   const int k = set_.num_examples;
   const int m = set_.num_triangles;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
-  // Every row starts as -K_fh x_h in its first 3 columns and zero in the others.
-  for (int u = 0; u < system_.num_rows(); ++u) {
-    double* row = rhs_ + static_cast<size_t>(u) * stride_;
-    for (int c = 0; c < 3; ++c) row[c] = -coupling_[3 * u + c];
-    std::fill(row + 3, row + stride_, 0.0);
-  }
-  std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
-  std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
-  jts_.setZero(k);
-  const std::vector<int> source = column_sources(k, with_jacobian, stride_);
-  double* out = batch_out_.data();
-  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
-    if (batch + 1 < set_.features.num_batches)
-      prefetch_rows(rhs_, stride_, system_.unknown_of_vertex().data(),
-                    set_.triangles.data() + 3 * static_cast<size_t>(batch + 1) * L,
-                    3 * std::min(L, m - (batch + 1) * L));
+  const int* corner_row = partition_.corner_row.data();
+  double* out = batch_out_.data() + static_cast<size_t>(chunk) * blend_batch_size(k);
+  double* jtj_lanes = jtj_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+  double* jts_lanes = jts_lanes_.data() + static_cast<size_t>(chunk) * k * L;
+  double* handle_jts = handle_jts_.data() + static_cast<size_t>(chunk) * k;
+  const int end = partition_.batch_start[chunk + 1];
+  for (int batch = partition_.batch_start[chunk]; batch < end; ++batch) {
+    if (batch + 1 < end) prefetch_rows(rhs_, stride_, corner_row + 3 * static_cast<size_t>(batch + 1) * L, 3 * L);
     blend_batch(set_.features, space_, weights, batch, out);
     std::copy(out, out + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
     const int lanes = std::min(L, m - first);
     if (with_jacobian) {
-      accumulate_jacobian_products(out, k, jtj_lanes_.data(), jts_lanes_.data());
+      accumulate_jacobian_products(out, k, jtj_lanes, jts_lanes);
       // J^T s = J^T F - J^T (handles' part of Q) on the few triangles touching a handle.
       for (int l = 0; batch_has_handle_[batch] && l < lanes; ++l) {
         const int slot = slot_of_triangle[first + l];
         if (slot < 0) continue;
         for (int a = 0; a < k; ++a)
           for (int e = 0; e < 6; ++e)
-            jts_(a) -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
+            handle_jts[a] -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
       }
     }
-    scatter_batch(out, source.data(), stride_, lanes,
-                  set_.triangles.data() + 3 * static_cast<size_t>(first),
-                  set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
-                  system_.unknown_of_vertex().data(), rhs_);
+    scatter_batch(out, source, stride_, lanes, corner_row + 3 * static_cast<size_t>(first),
+                  set_.frames.gradient.data() + 6 * static_cast<size_t>(first), rhs_);
   }
+}
+
+void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
+  const int k = set_.num_examples;
+  const int rows = system_.num_rows();
+  const int all_rows = rows + partition_.num_extra_rows();
+  const int chunks = partition_.num_chunks();
+  std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
+  std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
+  std::fill(handle_jts_.begin(), handle_jts_.end(), 0.0);
+  const std::vector<int> source = column_sources(k, with_jacobian, stride_);
+#pragma omp parallel num_threads(team_)
+  {
+    // Every system row starts as -K_fh x_h in its first 3 columns and zero in the others; the
+    // extra rows start at zero.
+#pragma omp for schedule(dynamic, kRowsPerTask)
+    for (int u = 0; u < all_rows; ++u) {
+      double* row = rhs_ + static_cast<size_t>(u) * stride_;
+      for (int c = 0; c < 3; ++c) row[c] = u < rows ? -coupling_[3 * u + c] : 0.0;
+      std::fill(row + 3, row + stride_, 0.0);
+    }
+#pragma omp for schedule(dynamic, 1)
+    for (int chunk = 0; chunk < chunks; ++chunk) assemble_chunk(weights, with_jacobian, source.data(), chunk);
+  }
+  // The chunks' shares of their shared rows and their sums, in chunk order.
+  for (int e = 0; e < partition_.num_extra_rows(); ++e) {
+    double* row = rhs_ + static_cast<size_t>(partition_.extra_target[e]) * stride_;
+    const double* extra = rhs_ + static_cast<size_t>(rows + e) * stride_;
+    for (int i = 0; i < stride_; ++i) row[i] += extra[i];
+  }
+  sum_chunks(jtj_lanes_, k * k * L);
+  sum_chunks(jts_lanes_, k * L);
+  sum_chunks(handle_jts_, k);
+  jts_ = Eigen::Map<const Eigen::VectorXd>(handle_jts_.data(), k);
   jtj_.resize(k, k);
   for (int a = 0; a < k; ++a) {
     for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
@@ -316,9 +347,15 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   }
 }
 
+void PoseEvaluator::sum_chunks(std::vector<double>& per_chunk, int size) const {
+  for (int chunk = 1; chunk < partition_.num_chunks(); ++chunk)
+    for (int i = 0; i < size; ++i) per_chunk[i] += per_chunk[static_cast<size_t>(chunk) * size + i];
+}
+
 void PoseEvaluator::gather_vertices(double* vertices) const {
   const std::vector<int>& unknown_of_vertex = system_.unknown_of_vertex();
   const std::vector<int>& handle_of_vertex = system_.handle_of_vertex();
+#pragma omp for schedule(dynamic, kRowsPerTask)
   for (int v = 0; v < set_.num_vertices; ++v) {
     const double* from = set_.rest.data() + 3 * static_cast<size_t>(v);
     if (unknown_of_vertex[v] >= 0) {
@@ -333,10 +370,11 @@ void PoseEvaluator::gather_vertices(double* vertices) const {
   }
 }
 
-double PoseEvaluator::residual_energy(const double* vertices, std::vector<int>& inverted) {
+void PoseEvaluator::residual_chunk(const double* vertices, int chunk) {
   double energy = 0.0;
+  std::vector<int>& inverted = chunk_inverted_[chunk];
   inverted.clear();
-  for (int batch = 0; batch < set_.features.num_batches; ++batch) {
+  for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1]; ++batch) {
     const int first = batch * L;
     unsigned mask = 0;
     energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
@@ -345,6 +383,23 @@ double PoseEvaluator::residual_energy(const double* vertices, std::vector<int>& 
                              residual_.data() + static_cast<size_t>(batch) * 6 * L, &mask);
     for (int l = 0; mask != 0; ++l, mask >>= 1)
       if (mask & 1u) inverted.push_back(first + l);
+  }
+  chunk_energy_[chunk] = energy;
+}
+
+double PoseEvaluator::pose_and_residual(double* vertices, std::vector<int>& inverted) {
+  const int chunks = partition_.num_chunks();
+#pragma omp parallel num_threads(team_)
+  {
+    gather_vertices(vertices);  // a work-shared loop: its barrier precedes the residuals
+#pragma omp for schedule(dynamic, 1)
+    for (int chunk = 0; chunk < chunks; ++chunk) residual_chunk(vertices, chunk);
+  }
+  double energy = 0.0;
+  inverted.clear();
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    energy += chunk_energy_[chunk];
+    inverted.insert(inverted.end(), chunk_inverted_[chunk].begin(), chunk_inverted_[chunk].end());
   }
   return energy;
 }
@@ -357,10 +412,18 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
-  for (int batch = 0; batch < set_.features.num_batches; batch += kCurvatureBatches)
-    add_residual_curvature(set_.features, at.weights.data(), batch,
-                           residual_.data() + static_cast<size_t>(batch) * 6 * L, curvature_scratch_.data(),
-                           curvature_lanes_.data());
+  const int chunks = partition_.num_chunks();
+  const double* weights = at.weights.data();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(k);
+    double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+    for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
+         batch += kCurvatureBatches)
+      add_residual_curvature(set_.features, weights, batch, residual_.data() + static_cast<size_t>(batch) * 6 * L,
+                             scratch, lanes);
+  }
+  sum_chunks(curvature_lanes_, k * k * L);
   for (int a = 0; a < k; ++a)
     for (int b = 0; b <= a; ++b) {
       double sum = 0.0;
@@ -374,7 +437,7 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
   stride_ = row_width(nrhs);
   assemble(weights, with_jacobian);
-  system_.forward_solve(rhs_, stride_, nrhs);
+  system_.forward_solve(rhs_, stride_, nrhs, team_);
   out.weights.assign(weights, weights + k);
   if (!with_jacobian) return;
   // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
@@ -382,7 +445,13 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
   Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
   std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
-  add_outer_products(rhs_, 0, system_.num_rows(), nrhs, stride_, outer_products_.data());
+  const int chunks = partition_.num_chunks();
+  const int outer_size = 3 * k * stride_;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
+  for (int chunk = 0; chunk < chunks; ++chunk)
+    add_outer_products(rhs_, partition_.row_start[chunk], partition_.row_start[chunk + 1], nrhs, stride_,
+                       outer_products_.data() + static_cast<size_t>(chunk) * outer_size);
+  sum_chunks(outer_products_, outer_size);
   for (int c = 0; c < 3; ++c)
     for (int a = 0; a < k; ++a) {
       const double* p = outer_products_.data() + static_cast<size_t>(c * k + a) * stride_;
@@ -397,18 +466,17 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   assemble_and_forward_solve(weights, with_jacobian, out);
-  system_.backward_solve(rhs_, stride_, 3);
+  system_.backward_solve(rhs_, stride_, 3, team_);
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
-  gather_vertices(out.vertices.data());
   const Eigen::Map<const Eigen::VectorXd> w(weights, set_.num_examples);
   out.energy =
-      residual_energy(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
+      pose_and_residual(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
   out.has_second_order = false;
   out.evaluation = ++evaluations_;
 }
 
 void PoseEvaluator::solve_jacobian_rows(const std::vector<int>& rows) {
-  system_.backward_solve_rows(rhs_, stride_, 3 * (set_.num_examples + 1), rows);
+  system_.backward_solve_rows(rhs_, stride_, 3 * (set_.num_examples + 1), rows, team_);
 }
 
 void PoseEvaluator::evaluate_system(const double* weights, PoseEvaluation& out) {

@@ -38,8 +38,9 @@ struct PoseEvaluation {
 struct EvaluationBuffers {
   std::vector<double> coupling;  // PoseSystem::num_rows() by 3: K_fh x_h
   std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
-  // PoseSystem::num_rows() rows of 3 (#E + 1) doubles rounded up to whole blocks of kLanes, from the first 64-byte
-  // boundary: the right-hand sides, then their solution (layout: PoseEvaluator's rhs_).
+  // PoseSystem::num_rows() + AssemblyPartition::num_extra_rows() rows of 3 (#E + 1) doubles
+  // rounded up to whole blocks of kLanes, from the first 64-byte boundary: the right-hand sides,
+  // then their solution, and the chunks' extra rows (layout: PoseEvaluator's rhs_).
   std::vector<double> rhs;
 };
 
@@ -47,9 +48,11 @@ class PoseEvaluator {
  public:
   // set / system: the example set and the factored system of its handles (both outlive this);
   // targets: #H by 3 handle positions; regularization: kappa >= 0; buffers: storage to use (may be
-  // shared by successive evaluators, not by simultaneous ones).
+  // shared by successive evaluators, not by simultaneous ones); team: threads of the passes (a
+  // thread_count; every result is the same bits for any team: the passes run over the system's
+  // fixed partition and combine its chunks in order).
   PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system, FeatureSpace space,
-                double regularization, const double* targets, EvaluationBuffers& buffers);
+                double regularization, const double* targets, EvaluationBuffers& buffers, int team = 1);
 
 
   // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
@@ -73,26 +76,40 @@ class PoseEvaluator {
 
  private:
   // Blends every batch of triangles, stores F_j(w), accumulates J^T J and J^T s, and scatters
-  // G'^T s and G'^T J into rhs_ (rows of stride_ doubles).
+  // G'^T s and G'^T J into rhs_ (rows of stride_ doubles): the partition's chunks in parallel,
+  // then their extra rows and sums in chunk order.
   void assemble(const double* weights, bool with_jacobian);
+  // assemble()'s work on one chunk: its batches' F_j(w) into residual_, its sums into its slices
+  // of jtj_lanes_, jts_lanes_ and handle_jts_, its scatter into its rows of rhs_.
+  // source: column_sources for stride_.
+  void assemble_chunk(const double* weights, bool with_jacobian, const int* source, int chunk);
+  // per_chunk: #chunks slices of `size` doubles; adds slices 1.. to slice 0, in chunk order.
+  void sum_chunks(std::vector<double>& per_chunk, int size) const;
   // assemble(), the forward solve, and with the Jacobian the Gauss-Newton system (out.weights,
   // out.schur, out.step_rhs).
   void assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out);
-  // Writes x*(w) (#V by 3) from the solved rhs_ and the targets.
+  // Writes x*(w) (#V by 3) from the solved rhs_ and the targets: a work-shared loop, called
+  // inside a parallel region.
   void gather_vertices(double* vertices) const;
-  // sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last assemble(); replaces F
-  // by those residuals in residual_ and lists the triangles turned over against F in inverted.
-  double residual_energy(const double* vertices, std::vector<int>& inverted);
+  // One chunk's part of sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last
+  // assemble(): replaces F by those residuals in residual_, writes the sum to
+  // chunk_energy_[chunk] and the triangles turned over against F to chunk_inverted_[chunk].
+  void residual_chunk(const double* vertices, int chunk);
+  // gather_vertices into vertices (#V by 3), then the residual energy over all chunks (returned)
+  // and the ascending triangles turned over against F (inverted).
+  double pose_and_residual(double* vertices, std::vector<int>& inverted);
 
   const ExampleSet::Impl& set_;
   const PoseSystem& system_;
+  const AssemblyPartition& partition_;
   FeatureSpace space_;
   double regularization_;
   const double* targets_;
+  int team_;
   std::vector<double>& coupling_;        // buffers' coupling
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
-  std::vector<double> batch_out_;        // blend_batch_size(#E): one batch's F and dF/dw
+  std::vector<double> batch_out_;        // #chunks by blend_batch_size(#E): a batch's F and dF/dw
   std::vector<double>& residual_;        // buffers' residual
   unsigned long evaluations_ = 0;        // evaluations so far
   // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
@@ -100,10 +117,14 @@ class PoseEvaluator {
   // 3 + c #E + a; solved in place (x0 in the first 3 columns).
   double* rhs_ = nullptr;
   int stride_ = 0;  // of the last evaluation: 3 or 3 (#E + 1) columns rounded up to kLanes
+  // Per chunk (#chunks slices each, summed into the first in chunk order):
   std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
+  std::vector<double> handle_jts_;       // #E: -J^T (handles' part of Q)
   std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane
   std::vector<float> curvature_scratch_;  // curvature_scratch_size(#E): add_residual_curvature's
+  std::vector<double> chunk_energy_;     // 1: the chunk's residual energy
+  std::vector<std::vector<int>> chunk_inverted_;  // the chunk's inverted triangles
   std::vector<double> outer_products_;   // 3 #E by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
   Eigen::MatrixXd jtj_;                  // #E by #E
   Eigen::VectorXd jts_;                  // #E: J^T s

@@ -62,6 +62,7 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
                      e.what());
   }
   number_rows_in_factor_order();
+  partition_ = assembly_partition(set.triangles, unknown_of_vertex_, num_rows_);
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
 }
 

@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "assembly_partition.h"
 #include "meshik/meshik.h"
 #include "meshik/sparse_cholesky.h"
 
@@ -51,17 +52,21 @@ class PoseSystem {
   // The in-place halves of the solve with the factored system (rows in the factor's order):
   // x is num_rows() rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
   // whole vectors) of every row are overwritten with L^{-1} x (forward) or L^{-T} x (backward).
+  // team: threads over groups of columns (the same bits for any team).
   static int padded_width(int nrhs) { return SparseCholesky::padded_width(nrhs); }
-  void forward_solve(double* x, int stride, int columns) const {
-    if (num_rows_ > 0) factor_.forward_solve_in_order(x, stride, columns);
+  void forward_solve(double* x, int stride, int columns, int team = 1) const {
+    if (num_rows_ > 0) factor_.forward_solve_in_order(x, stride, columns, team);
   }
-  void backward_solve(double* x, int stride, int columns) const {
-    if (num_rows_ > 0) factor_.backward_solve_in_order(x, stride, columns);
+  void backward_solve(double* x, int stride, int columns, int team = 1) const {
+    if (num_rows_ > 0) factor_.backward_solve_in_order(x, stride, columns, team);
   }
   // backward_solve exact on the rows `rows` only (SparseCholesky::backward_solve_rows_in_order).
-  void backward_solve_rows(double* x, int stride, int columns, const std::vector<int>& rows) const {
-    if (num_rows_ > 0) factor_.backward_solve_rows_in_order(x, stride, columns, rows);
+  void backward_solve_rows(double* x, int stride, int columns, const std::vector<int>& rows, int team = 1) const {
+    if (num_rows_ > 0) factor_.backward_solve_rows_in_order(x, stride, columns, rows, team);
   }
+
+  // The triangles' fixed chunks for the evaluation passes and the rows their corners scatter to.
+  const AssemblyPartition& partition() const { return partition_; }
 
   long long factor_nonzeros() const { return factor_.factor_nonzeros(); }
 
@@ -81,6 +86,7 @@ class PoseSystem {
   std::vector<int> handle_triangles_;
   std::vector<int> handle_triangle_slot_;
   SparseCholesky factor_;
+  AssemblyPartition partition_;
 };
 
 }  // namespace meshik

@@ -8,6 +8,7 @@
 #include "linear_start.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -67,7 +68,7 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->handles = handles;
   impl_->options = options;
   impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress);
-  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system);
+  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, thread_count(options.threads));
 }
 
 Solver::~Solver() = default;
@@ -82,7 +83,7 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   const SolverOptions& options = impl_->options;
   BuffersLease lease(impl_->pool_mutex, impl_->pool);
   PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization,
-                          targets, lease.buffers());
+                          targets, lease.buffers(), thread_count(options.threads));
   Eigen::VectorXd start;
   if (initial_weights == nullptr) {
     start = impl_->linear_start->weights(targets, options.weight_regularization);

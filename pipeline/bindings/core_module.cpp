@@ -217,10 +217,12 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
   })};
 }
 
-// Solver over `set` for handles (h,) with the given options (GIL released while factoring).
+// Solver over `set` for handles (h,) with the given options (GIL released while factoring);
+// threads: None (all cores) or a count, for each solve (thread_option).
 PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::object& handles,
                      const std::string& feature_space, double weight_regularization,
-                     int max_iterations, double tolerance, const nb::object& progress) {
+                     int max_iterations, double tolerance, const nb::object& progress,
+                     const nb::object& threads) {
   const nb::object handle_array = as_numpy(handles);
   check_shape(handle_array, "handles", {-1}, "(h,)");
   const std::vector<int> handle_values = int_values(handle_array, "handles");
@@ -229,6 +231,7 @@ PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::ob
   options.weight_regularization = weight_regularization;
   options.max_iterations = max_iterations;
   options.tolerance = tolerance;
+  options.threads = thread_option(threads);
   PythonProgress python_progress(progress);
   auto solver = python_progress.run([&](const meshik::ProgressCallback& callback) {
     return std::make_unique<meshik::Solver>(set, handle_values, options, callback);
@@ -341,7 +344,7 @@ NB_MODULE(_core, m) {
              PyExampleSet set = make_example_set(rest_vertices, faces, examples, progress, threads);
              new (self) PySolver(make_solver(std::move(set.core), handles, feature_space,
                                              weight_regularization, max_iterations, tolerance,
-                                             progress));
+                                             progress, threads));
            },
            "rest_vertices"_a, "faces"_a, "examples"_a, "handles"_a,
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
@@ -351,13 +354,15 @@ NB_MODULE(_core, m) {
           "from_example_set",
           [](const PyExampleSet& set, const nb::object& handles, const std::string& feature_space,
              double weight_regularization, int max_iterations, double tolerance,
-             const nb::object& progress) {
+             const nb::object& progress, const nb::object& threads) {
             return make_solver(set.core, handles, feature_space, weight_regularization,
-                               max_iterations, tolerance, progress);
+                               max_iterations, tolerance, progress, threads);
           },
           "example_set"_a, "handles"_a, "feature_space"_a = "nonlinear",
           "weight_regularization"_a = 0.0, "max_iterations"_a = 30, "tolerance"_a = 1e-10,
-          "progress"_a = nb::none(), "A solver sharing example_set's precomputed features.")
+          "progress"_a = nb::none(), "threads"_a = nb::none(),
+          "A solver sharing example_set's precomputed features. threads: of each solve (None: all "
+          "cores; the pose is the same bits for any count).")
       .def("solve", &solve, "targets"_a, "initial_weights"_a = nb::none(),
            "progress"_a = nb::none(),
            "targets: (h, 3) positions of the handles in order; initial_weights: (k,) warm start "

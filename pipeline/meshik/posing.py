@@ -39,7 +39,7 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     after each frame; context: prefix for error messages about the meshes (e.g. the rest mesh's file);
     features(threads): returns the meshes' meshik.ExampleSet (e.g. kept by an ExampleSetCache); by
     default it is built here; frame_labels: #frames prefixes for a frame's errors (default "frame
-    <index>"); threads: for the example-set precompute (None: all cores).
+    <index>"); threads: for the example-set precompute and each frame's solve (None: all cores).
     Raises PipelineError when the core rejects the input or a frame's pose (e.g. targets so far out
     that the pose overflows), naming the frame.
     """
@@ -49,7 +49,8 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     try:
         example_set = features(threads) if features is not None else \
             meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples), threads=threads)
-        solver = meshik.Solver.from_example_set(example_set, np.asarray(handles, dtype=np.int64), **solver_options)
+        solver = meshik.Solver.from_example_set(example_set, np.asarray(handles, dtype=np.int64), threads=threads,
+                                                 **solver_options)
     except meshik.InputError as error:
         raise PipelineError(f"{context}: {error}" if context else str(error)) from None
     precompute = time.perf_counter() - start

@@ -327,3 +327,21 @@ TEST(SparseCholesky, InOrderHalvesMatchSolveAndGiveProductsWithTheInverse) {
   SparseCholesky unfactored;
   EXPECT_THROW(unfactored.forward_solve_in_order(x.data(), stride, nrhs), std::logic_error);
 }
+
+TEST(SparseCholesky, InOrderSolvesGiveTheSameBitsOnAnyNumberOfThreads) {
+  const CscMatrix a = grid_laplacian(31, 27, 0.1);
+  SparseCholesky chol;
+  chol.compute(a);
+  const int nrhs = 40;  // several SIMD vectors of columns: groups of them go to different threads
+  const int stride = SparseCholesky::padded_width(nrhs);
+  const std::vector<double> b = random_values(static_cast<size_t>(a.rows) * stride, 43);
+  std::vector<double> serial = b;
+  chol.forward_solve_in_order(serial.data(), stride, nrhs, 1);
+  chol.backward_solve_in_order(serial.data(), stride, nrhs, 1);
+  for (int threads : {2, 3, 0}) {
+    std::vector<double> x = b;
+    chol.forward_solve_in_order(x.data(), stride, nrhs, threads);
+    chol.backward_solve_in_order(x.data(), stride, nrhs, threads);
+    EXPECT_EQ(x, serial) << threads << " threads";
+  }
+}

@@ -169,6 +169,35 @@ TEST(SparseCholeskyMesh, BackwardHalfOnChosenRowsMatchesTheFullOne) {
   }
 }
 
+TEST(SparseCholeskyMesh, InOrderSolvesGiveTheSameBitsOnAnyNumberOfThreads) {
+  // A mesh's factor: the backward half runs its elimination tree's subtrees on the threads.
+  const auto sphere = meshik_bench::geodesic_sphere(16);
+  const CscMatrix a =
+      meshik_bench::deformation_normal_matrix(sphere, meshik_bench::spread_handles(sphere.num_vertices(), 12), false);
+  SparseCholesky chol;
+  chol.compute(a);
+  const int n = a.rows;
+  const std::vector<int> rows = {n / 5, n / 2, n - 3};
+  for (int nrhs : {3, 15}) {
+    const int stride = SparseCholesky::padded_width(nrhs);
+    const std::vector<double> b = random_values(static_cast<size_t>(n) * stride, 44);
+    std::vector<double> serial = b, serial_rows = b;
+    chol.forward_solve_in_order(serial.data(), stride, nrhs, 1);
+    serial_rows = serial;
+    chol.backward_solve_in_order(serial.data(), stride, nrhs, 1);
+    chol.backward_solve_rows_in_order(serial_rows.data(), stride, nrhs, rows, 1);
+    for (int threads : {2, 3, 0}) {
+      std::vector<double> x = b;
+      chol.forward_solve_in_order(x.data(), stride, nrhs, threads);
+      std::vector<double> x_rows = x;
+      chol.backward_solve_in_order(x.data(), stride, nrhs, threads);
+      chol.backward_solve_rows_in_order(x_rows.data(), stride, nrhs, rows, threads);
+      EXPECT_EQ(x, serial) << nrhs << " columns, " << threads << " threads";
+      EXPECT_EQ(x_rows, serial_rows) << nrhs << " columns, " << threads << " threads, chosen rows";
+    }
+  }
+}
+
 TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
   const auto horse = horse_or_empty();
   if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";

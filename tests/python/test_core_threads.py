@@ -1,4 +1,4 @@
-"""The example-set precompute on several threads gives the same bits as on one (issue 13)."""
+"""The example-set precompute and the solve on several threads give the same bits as on one (issue 13)."""
 import numpy as np
 import pytest
 
@@ -28,10 +28,30 @@ def test_any_thread_count_gives_identical_features(limb):
             assert np.array_equal(one, other), f"threads={threads} differs from threads=1"
 
 
+@pytest.mark.parametrize("space", ["nonlinear", "linear"])
+def test_any_thread_count_gives_the_same_pose(limb, space):
+    example_set = meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples), threads=1)
+    handles = [0, len(limb.rest) // 3, len(limb.rest) - 1]
+    targets = limb.rest[handles] + [[0, 0, 0], [0.3, 0.4, -0.2], [0.6, -0.3, 0.2]]
+    rest_weights = np.zeros(len(limb.examples))
+    results = {}
+    for threads in (1, 2, 3, None):
+        solver = meshik.Solver.from_example_set(example_set, handles, feature_space=space, threads=threads)
+        results[threads] = [solver.solve(targets), solver.solve(targets, initial_weights=rest_weights)]
+    assert results[1][1].iterations >= 1
+    for threads, poses in results.items():
+        for one, other in zip(results[1], poses):
+            assert np.array_equal(one.vertices, other.vertices), f"threads={threads} differs from threads=1"
+            assert np.array_equal(one.weights, other.weights) and np.array_equal(one.energies, other.energies)
+
+
 @pytest.mark.parametrize("threads", [0, -1, 5000])
 def test_a_bad_thread_count_is_refused(limb, threads):
     with pytest.raises(meshik.InputError, match="threads"):
         meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples), threads=threads)
+    with pytest.raises(meshik.InputError, match="threads"):
+        meshik.Solver.from_example_set(meshik.ExampleSet(limb.rest, limb.faces, list(limb.examples)), [0],
+                                       threads=threads)
 
 
 def test_pose_outputs_are_the_same_bytes_for_any_thread_count(samples_dir, tmp_path):

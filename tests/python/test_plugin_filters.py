@@ -104,6 +104,21 @@ def test_pose_from_handle_transform_with_options_equals_python_api():
     assert_same_pose(ms, output, expected)
 
 
+def test_pose_is_the_same_for_any_thread_count():
+    ms, rest, faces, examples = load_sample("limb")
+    handles = spread_vertices(rest, 12)
+    select_vertices(ms, handles)
+    matrix = rigid_transform(40.0, 1, [0.2, 0.1, -0.1])
+    poses = []
+    for threads in (1, 2, 0):
+        output = ms.apply_filter(POSE, targetsource="Handle transform", handletransform=matrix, threads=threads)
+        poses.append(ms.mesh(output["layer_id"]).vertex_matrix())
+        ms.set_current_mesh(0)
+    assert all(np.array_equal(poses[0], pose) for pose in poses[1:])
+    targets = rest[handles] @ matrix[:3, :3].T + matrix[:3, 3]
+    assert relative_error(poses[0], python_pose(rest, faces, examples, handles, targets).vertices) < 1e-9
+
+
 def test_pose_layer_keeps_selection_and_rest_stays_current():
     ms, rest, _, examples = load_sample("bar")
     handles = spread_vertices(rest, 6)
@@ -184,7 +199,7 @@ def test_parameter_lists_document_every_parameter():
     expected = {
         POSE: ["examplelayers : str", "featurespace : str", "targetsource : str", "targetmesh : int",
                "constraintfile : str", "frame : str", "handletransform : numpy.ndarray[numpy.float64[4, 4]]",
-               "iterations : int", "weightregularization : float", "inplace : bool"],
+               "iterations : int", "weightregularization : float", "inplace : bool", "threads : int"],
         BLEND: ["examplelayers : str", "featurespace : str", "weights : str"],
     }
     for name, parameters in expected.items():

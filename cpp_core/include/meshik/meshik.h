@@ -40,6 +40,14 @@ struct SolverOptions {
   int max_iterations = 30;
   // ... or when the relative energy decrease of an iteration falls below this.
   double tolerance = 1e-10;
+  // Threads of each solve's passes (blend and scatter, residual, second-order term, outer
+  // products, and the triangular solves by groups of columns): 0 = all cores (OpenMP's default
+  // team, OMP_NUM_THREADS), n >= 1 = n threads. The result is the same bits for any count (the
+  // passes run over a fixed partition of the triangles and combine it in order). A solve called
+  // from inside an OpenMP parallel region runs serially (no nested teams); solves called from
+  // several threads of the caller at once each start their own team: give each
+  // threads = cores / callers (e.g. 1 in a pool of one worker per core).
+  int threads = 0;
 };
 
 // Result of one solve.

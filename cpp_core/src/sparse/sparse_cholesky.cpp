@@ -10,7 +10,9 @@
 #include "sparse/input_check.h"
 #include "sparse/numeric.h"
 #include "sparse/simd.h"
+#include "sparse/subtree_schedule.h"
 #include "sparse/triangular_solve.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -18,11 +20,12 @@ using namespace sparse;
 
 namespace {
 
-// An analysed pattern (kept to check that factorize() gets the same one) and its analysis,
-// shared by every SparseCholesky analysed like the one that made it.
+// An analysed pattern (kept to check that factorize() gets the same one), its analysis and the
+// backward solve's subtrees, shared by every SparseCholesky analysed like the one that made it.
 struct AnalyzedPattern {
   std::vector<int> col_start, row_index;
   Analysis analysis;
+  SubtreeSchedule schedule;
 };
 
 }  // namespace
@@ -68,6 +71,7 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   check_lower_input(a);
   auto analyzed = std::make_shared<AnalyzedPattern>();
   analyzed->analysis = analyze_pattern(a);
+  analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic);
   analyzed->col_start = a.col_start;
   analyzed->row_index = a.row_index;
   impl_->reset(std::move(analyzed));
@@ -133,24 +137,26 @@ const std::vector<int>& SparseCholesky::permutation() const { return impl_->anal
 
 int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
 
-void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns) const {
+void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
+  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads));
 }
 
-void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns) const {
+void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  backward_solve(impl_->analysis(), impl_->factor, x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads),
+                 &impl_->pattern->schedule);
 }
 
 void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int columns,
-                                                  const std::vector<int>& rows) const {
+                                                  const std::vector<int>& rows, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
   for (int r : rows)
     if (r < 0 || r >= size())
       throw std::invalid_argument("SparseCholesky: backward solve row " + std::to_string(r) + " out of range [0, " +
                                   std::to_string(size()) + ")");
-  backward_solve(impl_->analysis(), impl_->factor, reach_to_roots(impl_->analysis(), rows), x, stride, columns);
+  backward_solve(impl_->analysis(), impl_->factor, reach_to_roots(impl_->analysis(), rows), x, stride, columns,
+                 thread_count(threads), &impl_->pattern->schedule);
 }
 
 int SparseCholesky::size() const { return static_cast<int>(impl_->analysis().perm.size()); }

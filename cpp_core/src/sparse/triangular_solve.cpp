@@ -1,5 +1,7 @@
 #include "sparse/triangular_solve.h"
 
+#include <algorithm>
+
 #include "sparse/simd.h"
 
 namespace meshik::sparse {
@@ -187,15 +189,9 @@ void forward_chunk(const Analysis& analysis, const FactorValues& factor, double*
   }
 }
 
-// Backward pass (supernodes from the last, then the prefix) for one chunk; with a reach, only
-// over its part.
+// Backward pass over supernode s for one chunk: its rows of x from the rows below (done before).
 template <int V>
-void backward_chunk(const Analysis& analysis, const FactorValues& factor, const Reach* reach, double* x,
-                    long stride) {
-  const SymbolicFactor& f = analysis.symbolic;
-  const double* values = factor.supernodal.data();
-  for (int s = f.num_supernodes() - 1; s >= 0; --s) {
-    if (reach != nullptr && !reach->supernode[s]) continue;
+void backward_supernode(const SymbolicFactor& f, const double* values, int s, double* x, long stride) {
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
     const int* rows = f.rows.data() + f.row_start[s];
@@ -210,6 +206,27 @@ void backward_chunk(const Analysis& analysis, const FactorValues& factor, const 
     }
     update_last_from_rows_below<V>(k - j, block, k, r, j, rows, xs, x, stride);
     diagonal_backward<V>(block, k, r, xs, stride);
+}
+
+// Backward pass (supernodes from the last, then the prefix) for one chunk; with a reach, only
+// over its part. With team > 1: the schedule's top first, then its subtrees on the team's
+// threads (each supernode's arithmetic is the same whichever thread does it).
+template <int V>
+void backward_chunk(const Analysis& analysis, const FactorValues& factor, const Reach* reach, double* x,
+                    long stride, const SubtreeSchedule* schedule, int team) {
+  const SymbolicFactor& f = analysis.symbolic;
+  const double* values = factor.supernodal.data();
+  auto pass = [&](int s) {
+    if (reach == nullptr || reach->supernode[s]) backward_supernode<V>(f, values, s, x, stride);
+  };
+  if (schedule == nullptr || team <= 1 || schedule->root.size() < 2) {
+    for (int s = f.num_supernodes() - 1; s >= 0; --s) pass(s);
+  } else {
+    for (auto s = schedule->top.rbegin(); s != schedule->top.rend(); ++s) pass(*s);
+    const int subtrees = static_cast<int>(schedule->root.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+    for (int t = 0; t < subtrees; ++t)
+      for (int s = schedule->root[t]; s >= schedule->first[t]; --s) pass(s);
   }
   prefix_backward<V>(analysis.prefix, factor, reach, x, stride);
 }
@@ -219,46 +236,54 @@ constexpr int kMaxVectors = 16 / kLanes;
 
 template <int V>
 struct Forward {
-  // Runs forward_chunk<vectors> (vectors <= V); the forward pass has no reach.
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach*, double* x,
-                       long stride) {
+  // Runs forward_chunk<vectors> (vectors <= V); the forward pass has no reach and no schedule.
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach*,
+                       const SubtreeSchedule*, int, double* x, long stride) {
     if (vectors == V) forward_chunk<V>(a, factor, x, stride);
-    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, nullptr, x, stride);
+    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, nullptr, nullptr, 1, x, stride);
   }
 };
 
 template <int V>
 struct Backward {
   // Runs backward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach* reach, double* x,
-                       long stride) {
-    if (vectors == V) backward_chunk<V>(a, factor, reach, x, stride);
-    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, reach, x, stride);
+  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach* reach,
+                       const SubtreeSchedule* schedule, int team, double* x, long stride) {
+    if (vectors == V) backward_chunk<V>(a, factor, reach, x, stride, schedule, team);
+    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, reach, schedule, team, x, stride);
   }
 };
 
 // Runs Pass on chunks of at most kMaxVectors vectors covering the first `columns` (rounded up to
-// whole vectors) of each row.
+// whole vectors) of each row. With team > 1: without a schedule, on groups of fewer vectors, one
+// thread per group (each column's arithmetic is the same in any group, so the result is the same
+// bits); with one, each chunk on the schedule's subtrees.
 template <template <int> class Pass>
-void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach, double* x, int stride,
-               int columns) {
-  const int width = round_up_to_lanes(columns);
-  for (int c0 = 0; c0 < width; c0 += kMaxVectors * kLanes) {
-    const int vectors = (width - c0) / kLanes < kMaxVectors ? (width - c0) / kLanes : kMaxVectors;
-    Pass<kMaxVectors>::dispatch(vectors, a, factor, reach, x + c0, stride);
+void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach, const SubtreeSchedule* schedule,
+               double* x, int stride, int columns, int team) {
+  const int vectors = round_up_to_lanes(columns) / kLanes;
+  const int column_team = schedule == nullptr ? std::max(team, 1) : 1;
+  const int per_group = std::max(1, std::min(kMaxVectors, (vectors + column_team - 1) / column_team));
+  const int groups = (vectors + per_group - 1) / per_group;
+#pragma omp parallel for schedule(static) num_threads(std::min(column_team, std::max(groups, 1))) \
+    if (column_team > 1 && groups > 1)
+  for (int g = 0; g < groups; ++g) {
+    const int first = g * per_group;
+    Pass<kMaxVectors>::dispatch(std::min(per_group, vectors - first), a, factor, reach, schedule,
+                                schedule == nullptr ? 1 : team, x + first * kLanes, stride);
   }
 }
 
 }  // namespace
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                   int columns) {
-  by_chunks<Forward>(analysis, factor, nullptr, x, stride, columns);
+                   int columns, int team) {
+  by_chunks<Forward>(analysis, factor, nullptr, nullptr, x, stride, columns, team);
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                    int columns) {
-  by_chunks<Backward>(analysis, factor, nullptr, x, stride, columns);
+                    int columns, int team, const SubtreeSchedule* schedule) {
+  by_chunks<Backward>(analysis, factor, nullptr, schedule, x, stride, columns, team);
 }
 
 Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
@@ -283,8 +308,8 @@ Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, const Reach& reach, double* x,
-                    int stride, int columns) {
-  by_chunks<Backward>(analysis, factor, &reach, x, stride, columns);
+                    int stride, int columns, int team, const SubtreeSchedule* schedule) {
+  by_chunks<Backward>(analysis, factor, &reach, schedule, x, stride, columns, team);
 }
 
 }  // namespace meshik::sparse

@@ -1,0 +1,83 @@
+// Splitting the supernodal tree into a top and independent subtrees of balanced work.
+#include "sparse/subtree_schedule.h"
+
+#include <algorithm>
+
+namespace meshik::sparse {
+
+namespace {
+
+constexpr int kNominalThreads = 4;  // the team the split is balanced for (not the actual one)
+constexpr int kMaxSplits = 512;     // supernodes taken apart at most
+
+}  // namespace
+
+SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
+  const int count = f.num_supernodes();
+  // Work and first (lowest) supernode of each subtree; children precede their parent.
+  std::vector<double> own(count), work(count);
+  std::vector<int> first(count), size(count, 1);
+  for (int s = 0; s < count; ++s) {
+    own[s] = static_cast<double>(f.row_start[s + 1] - f.row_start[s]) * (f.first_column[s + 1] - f.first_column[s]);
+    work[s] += own[s];
+    first[s] = s;
+    for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) first[s] = std::min(first[s], first[f.children[c]]);
+    if (f.parent[s] >= 0) {
+      work[f.parent[s]] += work[s];
+      size[f.parent[s]] += size[s];
+    }
+  }
+  SubtreeSchedule schedule;
+  for (int s = 0; s < count; ++s)
+    if (size[s] != s - first[s] + 1) {  // not a postorder: everything on top, in one pass
+      for (int t = 0; t < count; ++t) schedule.top.push_back(t);
+      return schedule;
+    }
+  double total = 0.0;
+  std::vector<int> roots;
+  for (int s = 0; s < count; ++s)
+    if (f.parent[s] < 0) {
+      roots.push_back(s);
+      total += work[s];
+    }
+  // Takes the largest subtree apart `splits` times (or until it is a leaf), leaving the subtrees
+  // in `subtrees` and the taken roots in `top`. Returns the number of splits (at most `splits`)
+  // after which the estimated time on kNominalThreads was least: the top, then the subtrees (at
+  // best the rest shared evenly, at worst the largest alone).
+  auto split = [&](int splits, std::vector<int>& top, std::vector<int>& subtrees) {
+    subtrees = roots;
+    top.clear();
+    double top_work = 0.0, best_time = total;
+    int best = 0;
+    for (int step = 1; step <= splits; ++step) {
+      const auto largest = std::max_element(subtrees.begin(), subtrees.end(), [&](int a, int b) {
+        return work[a] < work[b] || (work[a] == work[b] && a < b);
+      });
+      const int s = *largest;
+      if (f.child_start[s] == f.child_start[s + 1]) break;
+      subtrees.erase(largest);
+      top.push_back(s);
+      top_work += own[s];
+      double largest_work = 0.0;
+      for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) subtrees.push_back(f.children[c]);
+      for (int t : subtrees) largest_work = std::max(largest_work, work[t]);
+      const double time = top_work + std::max(largest_work, (total - top_work) / kNominalThreads);
+      if (time < best_time) {
+        best_time = time;
+        best = step;
+      }
+    }
+    return best;
+  };
+  std::vector<int> subtrees;
+  split(split(std::min(count, kMaxSplits), schedule.top, subtrees), schedule.top, subtrees);
+  std::sort(schedule.top.begin(), schedule.top.end());
+  std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); });
+  for (int s : subtrees) {
+    schedule.first.push_back(first[s]);
+    schedule.root.push_back(s);
+  }
+  return schedule;
+}
+
+}  // namespace meshik::sparse

@@ -1,0 +1,28 @@
+// Independent subtrees of the supernodal elimination tree, for passes that run them on several
+// threads: the backward solve handles the top of the tree (the ancestors of every subtree) first,
+// then each subtree on its own, and the result is the same bits in any order of the subtrees.
+#pragma once
+
+#include <vector>
+
+#include "sparse/symbolic.h"
+
+namespace meshik::sparse {
+
+struct SubtreeSchedule {
+  // Supernodes above the subtrees (each an ancestor of some subtree root), increasing.
+  std::vector<int> top;
+  // Per subtree: its supernodes [first[t], root[t]] (a postorder numbers a subtree
+  // consecutively, its root last), largest work first.
+  std::vector<int> first;
+  std::vector<int> root;
+};
+
+// f: a symbolic factor whose supernodes are numbered in a postorder of their tree. Splits the
+// tree from its roots down, taking the subtree of most work (sum of its supernodes' r k) apart into
+// its root (to the top) and its children's subtrees, as many times (at most 512) as minimises the
+// estimated time on 4 threads. Depends only on f, never on the team that runs it; a tree not in
+// postorder is all top.
+SubtreeSchedule subtree_schedule(const SymbolicFactor& f);
+
+}  // namespace meshik::sparse
