@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "meshik/constraints/constraint_file.h"
+#include "owned_array.h"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -30,9 +31,7 @@ using IndexArray = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb
 // A numpy array of the given shape that owns `values` (moved to the heap).
 template <typename T>
 nb::object owning_array(std::vector<T>&& values, std::initializer_list<size_t> shape) {
-  auto* owned = new std::vector<T>(std::move(values));
-  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
-  return nb::cast(nb::ndarray<nb::numpy, T>(owned->data(), shape.size(), shape.begin(), owner));
+  return nb::cast(meshik_bindings::owned_array(std::move(values), shape));
 }
 
 // (group names, list of #group index arrays, #H handle array, #frames by #H by 3 targets, frame names).

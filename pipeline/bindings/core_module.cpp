@@ -16,6 +16,7 @@
 
 #include "decimate_module.h"
 #include "meshik/meshik.h"
+#include "owned_array.h"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -91,9 +92,7 @@ std::vector<double> point_rows(const nb::handle& value, const char* name, long r
 
 // A numpy array that owns `values` (moved), with the given shape.
 NumpyArray to_numpy(std::vector<double>&& values, std::initializer_list<size_t> shape) {
-  auto* owned = new std::vector<double>(std::move(values));
-  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
-  return NumpyArray(owned->data(), shape.size(), shape.begin(), owner);
+  return meshik_bindings::owned_array(std::move(values), shape);
 }
 
 // A 1-D int64 numpy array holding a copy of indices.

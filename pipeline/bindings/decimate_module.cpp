@@ -10,6 +10,7 @@
 
 #include "decimate_module.h"
 #include "meshik/decimate.h"
+#include "owned_array.h"
 
 namespace nb = nanobind;
 
@@ -22,10 +23,8 @@ using IntArray = nb::ndarray<nb::numpy, int>;
 
 // A numpy int32 array owning `values`, with the given shape (rows, or rows by columns).
 IntArray to_numpy(std::vector<int>&& values, size_t rows, size_t columns) {
-  auto* owned = new std::vector<int>(std::move(values));
-  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<int>*>(p); });
-  if (columns == 0) return IntArray(owned->data(), {rows}, owner);
-  return IntArray(owned->data(), {rows, columns}, owner);
+  if (columns == 0) return meshik_bindings::owned_array(std::move(values), {rows});
+  return meshik_bindings::owned_array(std::move(values), {rows, columns});
 }
 
 // decimate(rest, triangles, examples, locked, target_triangles, max_normal_change_degrees)

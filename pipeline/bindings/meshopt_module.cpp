@@ -11,6 +11,8 @@
 
 #include <meshoptimizer.h>
 
+#include "owned_array.h"
+
 namespace nb = nanobind;
 using namespace nb::literals;
 
@@ -22,9 +24,7 @@ using Indices = nb::ndarray<const std::uint32_t, nb::ndim<1>, nb::c_contig, nb::
 // A numpy array of the given shape that owns `values` (moved to the heap).
 template <typename T>
 nb::object owning_array(std::vector<T>&& values, std::initializer_list<size_t> shape) {
-  auto* owned = new std::vector<T>(std::move(values));
-  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
-  return nb::cast(nb::ndarray<nb::numpy, T>(owned->data(), shape.size(), shape.begin(), owner));
+  return nb::cast(meshik_bindings::owned_array(std::move(values), shape));
 }
 
 // ValueError unless every index addresses one of vertex_count vertices and the list is whole triangles.
