@@ -71,6 +71,20 @@ def select_vertices(ms: pymeshlab.MeshSet, indices) -> None:
     assert list(selected) == sorted(int(i) for i in indices)
 
 
+def apply_refused(ms: pymeshlab.MeshSet, filter_name: str, **parameters) -> str:
+    """Applies a filter that must raise pymeshlab.PyMeshLabException; returns the exception's message.
+
+    pymeshlab 2025.7 workaround (plugin/README.md, "Known issues"): a filter call that raises leaves
+    pymeshlab holding a pointer into this MeshSet, which the next mesh load in any MeshSet writes
+    through; once this MeshSet is freed that write corrupts the heap. A filter call that succeeds
+    clears the pointer, so a read-only measuring filter runs on `ms` (it needs a current layer).
+    """
+    with pytest.raises(pymeshlab.PyMeshLabException) as refusal:
+        ms.apply_filter(filter_name, **parameters)
+    ms.get_topological_measures()
+    return str(refusal.value)
+
+
 def relative_error(actual: np.ndarray, expected: np.ndarray) -> float:
     """|actual - expected| / |expected| (Frobenius norms)."""
     return float(np.linalg.norm(actual - expected) / np.linalg.norm(expected))

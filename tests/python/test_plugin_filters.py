@@ -11,8 +11,8 @@ import pytest
 
 import meshik
 from conftest import SAMPLES, example_set_files
-from plugin_helpers import (BLEND, POSE, layer_arrays, load_mesh_set, mesh_set, plugin_path, relative_error,
-                            select_vertices, spread_vertices)
+from plugin_helpers import (BLEND, POSE, apply_refused, layer_arrays, load_mesh_set, mesh_set, plugin_path,
+                            relative_error, select_vertices, spread_vertices)
 
 SAMPLE_SETS = ["bar", "flag", "limb"]
 
@@ -104,7 +104,7 @@ def test_pose_from_handle_transform_with_options_equals_python_api():
     assert_same_pose(ms, output, expected)
 
 
-def test_pose_is_the_same_for_any_thread_count():
+def test_pose_is_the_same_for_any_thread_count_and_a_negative_count_is_refused():
     ms, rest, faces, examples = load_sample("limb")
     handles = spread_vertices(rest, 12)
     select_vertices(ms, handles)
@@ -117,6 +117,7 @@ def test_pose_is_the_same_for_any_thread_count():
     assert all(np.array_equal(poses[0], pose) for pose in poses[1:])
     targets = rest[handles] @ matrix[:3, :3].T + matrix[:3, 3]
     assert relative_error(poses[0], python_pose(rest, faces, examples, handles, targets).vertices) < 1e-9
+    assert "threads" in apply_refused(ms, POSE, targetsource="Handle transform", handletransform=matrix, threads=-1)
 
 
 def test_pose_layer_keeps_selection_and_rest_stays_current():
