@@ -71,17 +71,15 @@ def carry_over(old: Path, new: Path, replaced: Callable[[str], bool]) -> None:
             if replaced(relative) or os.path.lexists(target):
                 continue
             mode = source.lstat().st_mode
+            if not (stat.S_ISLNK(mode) or stat.S_ISDIR(mode) or stat.S_ISREG(mode)):
+                raise SwapUnavailable(errno.ENOTSUP, f"{source} is neither a file, a folder nor a link")
             try:
                 if stat.S_ISLNK(mode):
                     os.symlink(os.readlink(source), target)
                 elif stat.S_ISDIR(mode):
                     target.mkdir()
-                elif stat.S_ISREG(mode):
-                    os.link(source, target)
                 else:
-                    raise SwapUnavailable(errno.ENOTSUP, f"{source} is neither a file, a folder nor a link")
-            except SwapUnavailable:
-                raise
+                    os.link(source, target)
             except OSError as error:
                 if error.errno in (errno.EXDEV, errno.EPERM, errno.EMLINK, errno.ENOTSUP):
                     raise SwapUnavailable(error.errno, f"cannot keep {source}: {error.strerror}") from None

@@ -189,7 +189,7 @@ def _target_triangles(simplify: Union[int, float], triangles: int) -> int:
 
 def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray, posed: PosedAnimation,
             frame_names: Sequence[str], vertex_ids: np.ndarray, simplified: bool, grid, fps: float,
-            formats: Tuple[str, ...], advance: Callable[[], None], glb_choice: Tuple[str, Any],
+            formats: Tuple[str, ...], advance: Callable[[], None], glb_choice: Tuple[str, Any, str],
             errors: OutputErrors) -> None:
     """Write every requested format into the staging folder; advance() after each file.
     glb_choice: (variant, grid, targets) of the .glb; errors: records the bytes and position error of the

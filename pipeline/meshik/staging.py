@@ -100,7 +100,7 @@ class StagedOutput:
         try:
             home.mkdir(parents=True, exist_ok=True)
             _remove_abandoned_staging(home)
-            if self.destination.is_dir():
+            if self.swapping and self.destination.is_dir():  # left there by an earlier file-by-file commit
                 _remove_abandoned_staging(self.destination)
             suffix = f"-{self.destination.name}" if self.swapping else ""
             self.staging = home / f"{_STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:8]}{suffix}"
