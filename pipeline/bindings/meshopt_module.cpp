@@ -1,7 +1,7 @@
 // meshik._meshopt: the meshoptimizer library's vertex and index codecs (Debian libmeshoptimizer-dev)
-// for EXT_meshopt_compression in meshik/export_gltf_meshopt.py: vertex codec version 0, index codec
-// version 1 (the versions the extension specifies), plus the vertex-cache and vertex-fetch orders
-// that make the streams compress well. Errors are raised as ValueError naming the stream.
+// for EXT_meshopt_compression in meshik/export_gltf_quantized.py: vertex codec version 0, index codec
+// version 1 (the versions the extension specifies), plus the vertex-cache triangle order and a
+// vertex order (surface_walk.h) that make the streams compress well. Errors are raised as ValueError naming the stream.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
@@ -12,6 +12,7 @@
 #include <meshoptimizer.h>
 
 #include "owned_array.h"
+#include "surface_walk.h"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -20,6 +21,7 @@ namespace {
 
 using ByteRows = nb::ndarray<const std::uint8_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using Indices = nb::ndarray<const std::uint32_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Positions = nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
 
 // A numpy array of the given shape that owns `values` (moved to the heap).
 template <typename T>
@@ -92,16 +94,17 @@ nb::object optimize_vertex_cache(Indices indices, size_t vertex_count) {
   return owning_array(std::move(reordered), {reordered.size()});
 }
 
-// (#V uint32 new index of each old vertex in first-use order, number of used vertices); unused get ~0u.
-nb::tuple vertex_fetch_remap(Indices indices, size_t vertex_count) {
+// #V uint32 old vertex index at each new position (surface_walk.h) of the triangles (3 #F uint32)
+// over #V by 3 positions.
+nb::object surface_walk(Indices indices, Positions positions) {
+  const size_t vertex_count = positions.shape(0);
   check_triangles(indices, vertex_count);
-  std::vector<std::uint32_t> remap(vertex_count);
-  size_t used = 0;
+  std::vector<std::uint32_t> order;
   {
     nb::gil_scoped_release release;
-    used = meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indices.size(), vertex_count);
+    order = meshik_bindings::surface_walk_order(indices.data(), indices.size(), positions.data(), vertex_count);
   }
-  return nb::make_tuple(owning_array(std::move(remap), {vertex_count}), used);
+  return owning_array(std::move(order), {vertex_count});
 }
 
 }  // namespace
@@ -114,5 +117,5 @@ NB_MODULE(_meshopt, m) {
   m.def("encode_index_buffer", &encode_index_buffer, "indices"_a, "vertex_count"_a);
   m.def("decode_index_buffer", &decode_index_buffer, "data"_a, "count"_a);
   m.def("optimize_vertex_cache", &optimize_vertex_cache, "indices"_a, "vertex_count"_a);
-  m.def("vertex_fetch_remap", &vertex_fetch_remap, "indices"_a, "vertex_count"_a);
+  m.def("surface_walk", &surface_walk, "indices"_a, "positions"_a);
 }

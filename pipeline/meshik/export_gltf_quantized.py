@@ -10,7 +10,9 @@ SHORT targets and dense #frames x r weights whose decoding stays within BASIS_TO
 of every frame (the per-frame files' own bound), one target per frame when no smaller basis does.
 Elements are padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
 input id. No normals: the deltas of normals would add a stream per frame; viewers compute them.
-Vertices are in meshoptimizer's vertex-cache / fetch order (what makes the streams compress);
+Triangles are in meshoptimizer's vertex-cache order; vertices in a nearest-neighbour walk over the
+surface (_meshopt.surface_walk), so that consecutive vertices, whose difference the vertex codec
+stores, move alike: the morph targets code in about 19% fewer bytes than in first-use order;
 with meshopt every buffer view (vertex, index, targets, animation) is EXT_meshopt_compression
 encoded by the meshoptimizer library (meshik._meshopt, vertex codec version 0).
 """
@@ -58,8 +60,8 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     if not (np.isfinite(rest).all() and np.isfinite(frames).all()):
         raise ValueError("positions are not all finite")
     triangles = _meshopt.optimize_vertex_cache(np.asarray(faces, dtype=np.uint32).reshape(-1), len(rest))
-    new_of_old = _fetch_order(triangles, len(rest))
-    old_of_new = np.argsort(new_of_old)
+    old_of_new = _meshopt.surface_walk(triangles, np.ascontiguousarray(rest, dtype=np.float64)).astype(np.int64)
+    new_of_old = np.argsort(old_of_new)
     base = _grid_coordinates(np.asarray(rest, dtype=np.float64)[old_of_new], grid)
     basis = low_rank_basis(base, (frames[:, old_of_new] - np.asarray(grid.origin)) / grid.step, BASIS_TOLERANCE) \
         if targets == "basis" else None
@@ -88,17 +90,6 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     document = animation_document(name, generator, extensions, node, primitive, frame_names, times_accessor, accessors,
                                   binary)
     return glb_bytes(document, bytes(binary.data))
-
-
-def _fetch_order(triangles: np.ndarray, vertex_count: int) -> np.ndarray:
-    """#V new index of each vertex: first use in `triangles` (3 #F), vertices no triangle uses last."""
-    from meshik import _meshopt
-
-    new_of_old, used = _meshopt.vertex_fetch_remap(triangles, vertex_count)
-    new_of_old = new_of_old.astype(np.int64)
-    unused = new_of_old == 0xFFFFFFFF
-    new_of_old[unused] = np.arange(used, used + int(unused.sum()))
-    return new_of_old
 
 
 def _grid_coordinates(points: np.ndarray, grid: QuantizationGrid) -> np.ndarray:

@@ -38,6 +38,34 @@ def test_meshopt_codecs_round_trip_and_refuse_bad_streams():
         _meshopt.decode_vertex_buffer(encoded[:20], 1000, 8)
 
 
+def test_surface_walk_visits_every_vertex_stepping_to_the_nearest_neighbour():
+    xs, ys = np.meshgrid(np.arange(6.0), np.arange(5.0))
+    rest = np.c_[xs.ravel() * np.linspace(1.0, 2.0, 30), ys.ravel(), np.zeros(30)]  # uneven spacing
+    faces = np.array([[r * 6 + c, r * 6 + c + 1, r * 6 + c + 6] for r in range(4) for c in range(5)] +
+                     [[r * 6 + c + 1, r * 6 + c + 7, r * 6 + c + 6] for r in range(4) for c in range(5)])
+    # a second component, and vertices 33 and 34 used by no triangle
+    rest = np.vstack([rest, [[20.0, 0, 0], [21.0, 0, 0], [20.0, 1, 0], [50.0, 0, 0], [60.0, 0, 0]]])
+    faces = np.vstack([faces, [[30, 31, 32]]]).astype(np.uint32)
+    order = _meshopt.surface_walk(faces.reshape(-1), rest)
+    assert sorted(order) == list(range(35)) and order[0] == faces[0, 0]
+    assert list(order[-2:]) == [33, 34] and set(order[30:33]) == {30, 31, 32}
+    neighbours = {v: set() for v in range(35)}
+    for a, b, c in faces:
+        neighbours[a] |= {b, c}
+        neighbours[b] |= {a, c}
+        neighbours[c] |= {a, b}
+    seen = {order[0]}
+    for before, vertex in zip(order[:29], order[1:30]):
+        open_neighbours = neighbours[before] - seen
+        if open_neighbours:  # a step, to the nearest of them; otherwise a back-up along the walk
+            nearest = min(open_neighbours, key=lambda w: (np.sum((rest[w] - rest[before]) ** 2), w))  # ties: lower index
+            assert vertex == nearest
+        seen.add(vertex)
+    np.testing.assert_array_equal(_meshopt.surface_walk(faces.reshape(-1), rest), order)  # deterministic
+    with pytest.raises(ValueError, match="index 2 is 40, past the 35 vertices"):
+        _meshopt.surface_walk(np.array([0, 1, 40], dtype=np.uint32), rest)
+
+
 @pytest.fixture
 def animation():
     """A 4 x 4 grid of vertices (vertex 16 used by no triangle), 3 frames moving it."""
