@@ -172,12 +172,15 @@ struct PySolver {
 
 // ExampleSet from rest_vertices (n, 3), faces (m, 3) and examples ((k, n, 3) or k arrays (n, 3)),
 // with the GIL released while the core validates and precomputes.
-// threads: None (all cores) or a count >= 1, as the core's ExampleSet takes it (0 = all cores).
+// threads: None (all cores) or a count from 1 to kMaxThreads, as the core's ExampleSet takes it
+// (0 = all cores).
+constexpr long kMaxThreads = 4096;
 int thread_option(const nb::object& threads) {
   if (threads.is_none()) return 0;
   const long count = nb::cast<long>(threads);
-  if (count < 1 || count > 4096)
-    throw meshik::InputError("threads must be None (all cores) or a count from 1 to 4096, got " + std::to_string(count));
+  if (count < 1 || count > kMaxThreads)
+    throw meshik::InputError("threads must be None (all cores) or a count from 1 to " + std::to_string(kMaxThreads) +
+                             ", got " + std::to_string(count));
   return static_cast<int>(count);
 }
 
@@ -290,6 +293,7 @@ NB_MODULE(_core, m) {
   m.doc() = "MeshIK core: pose a mesh from handles within the space of example poses.";
   nb::exception<meshik::InputError>(m, "InputError", PyExc_ValueError);
   nb::exception<meshik::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
+  m.attr("MAX_THREADS") = kMaxThreads;
   bind_decimate(m);
 
   nb::class_<PyExampleSet>(m, "ExampleSet",

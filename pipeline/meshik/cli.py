@@ -160,7 +160,7 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                              "mixed by per-frame weights, that keep every frame within the grid's rounding; one per "
                              "frame when no smaller basis does) or frames (one target per frame)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
-    parser.add_argument("--threads", type=_positive_int, default=None, metavar="N",
+    parser.add_argument("--threads", type=_thread_count, default=None, metavar="N",
                         help="threads of the example-set precompute and of each solve (default: all cores for "
                              "pose, one per batch worker); the outputs are the same for any count")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
@@ -260,6 +260,16 @@ def _positive_int(text: str) -> int:
     value = int(text)
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected an integer >= 1, got {text}")
+    return value
+
+
+def _thread_count(text: str) -> int:
+    """argparse type: a thread count from 1 to the core's MAX_THREADS."""
+    from meshik._core import MAX_THREADS
+
+    value = _positive_int(text)
+    if value > MAX_THREADS:
+        raise argparse.ArgumentTypeError(f"expected an integer from 1 to {MAX_THREADS}, got {text}")
     return value
 
 
