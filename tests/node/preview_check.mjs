@@ -2,7 +2,7 @@
 // and reports what a person would see, for tests/python/test_glb_preview.py.
 //   node tests/node/preview_check.mjs URL FRAME SCRATCH_DIR
 // Stdout: JSON {consoleErrors, pageErrors, failedRequests, viewerError, frameCount, playedDiffers,
-// sliderFrame, influencesAtSlider, reportText, sheetLoaded}; screenshots in SCRATCH_DIR.
+// framedBox, sliderFrame, influencesAtSlider, reportText, sheetLoaded}; screenshots in SCRATCH_DIR.
 import fs from 'node:fs';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
@@ -26,6 +26,7 @@ try {
                              null, { timeout: 60000 });
   result.viewerError = await page.evaluate(() => window.meshikViewer.error);
   result.frameCount = await page.evaluate(() => window.meshikViewer.frameCount);
+  result.framedBox = await page.evaluate(() => window.meshikViewer.framedBox);
   const canvas = page.locator('#stage canvas');
   await page.waitForTimeout(300);
   const first = await canvas.screenshot({ path: path.join(scratch, 'playing-1.png') });

@@ -65,10 +65,14 @@ def test_page_plays_the_animation_and_the_slider_picks_a_frame(served, demo_outp
     assert seen["viewerError"] is None
     report = json.loads((demo_output / "bar" / "report.json").read_text())  # the first job shown
     assert seen["frameCount"] == report["frame_count"]
+    # the camera frames the whole animation: the box spans every frame's vertices, and no more
+    animation = read_animation_glb((demo_output / "bar" / "animation.glb").read_bytes())
+    low, high = animation.frames.min(axis=(0, 1)), animation.frames.max(axis=(0, 1))
+    np.testing.assert_allclose(seen["framedBox"], [low, high], atol=1e-5 * np.linalg.norm(high - low))
     assert seen["playedDiffers"], "two screenshots 0.7 s apart are the same: the animation does not play"
     assert seen["sliderFrame"] == frame and not seen["playingAfterSlider"]
     # the mesh mixes its targets with the file's weights of the slider's key
-    expected = read_animation_glb((demo_output / "bar" / "animation.glb").read_bytes()).weights[frame]
+    expected = animation.weights[frame]
     np.testing.assert_allclose(seen["influencesAtSlider"], expected, atol=1e-5)
     assert seen["sheetLoaded"] and '"compressed_outputs"' in seen["reportText"]
 

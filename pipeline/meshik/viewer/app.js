@@ -2,7 +2,7 @@
 // Draco decoders, all served locally) with orbit controls and a frame slider, beside the job's
 // contact sheet and report. The jobs come from the page's #manifest: [{name, glb, report, sheet}].
 // window.meshikViewer exposes the state for tests: ready, error, frameCount, currentFrame,
-// playing, setFrame(k), influences().
+// playing, framedBox ([min, max] over every key: what the camera frames), setFrame(k), influences().
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
@@ -46,9 +46,26 @@ function resize() {
   camera.updateProjectionMatrix();
 }
 
-// Point the camera at an object's bounding box.
-function frameObject(object) {
-  const box = new THREE.Box3().setFromObject(object);
+const BOX_SAMPLES_PER_KEY = 20000;  // vertices read per key when framing; a larger mesh is read with a stride
+
+// The world-space box of the mesh over every key of the clip (a basis's weights can carry a vertex
+// past the rest box and the targets' own bounds): the mixer is set to each key in turn, then back to 0.
+function animationBox(mesh, mixer, keyCount, fps) {
+  const box = new THREE.Box3();
+  const point = new THREE.Vector3();
+  const count = mesh.geometry.attributes.position.count;
+  const stride = Math.max(1, Math.ceil(count / BOX_SAMPLES_PER_KEY));
+  for (let k = 0; k < keyCount; ++k) {
+    mixer.setTime(k / fps);
+    mesh.updateMatrixWorld(true);
+    for (let i = 0; i < count; i += stride) box.expandByPoint(mesh.getVertexPosition(i, point).applyMatrix4(mesh.matrixWorld));
+  }
+  mixer.setTime(0);
+  return box;
+}
+
+// Point the camera at a world-space box.
+function frameBox(box) {
   const centre = box.getCenter(new THREE.Vector3());
   const radius = box.getSize(new THREE.Vector3()).length() / 2 || 1;
   camera.near = radius / 100;
@@ -103,8 +120,10 @@ async function show(job) {
   viewer.playing = true;
   elements.play.textContent = 'Pause';
   elements.frame.max = String(viewer.frameCount - 1);
+  const box = animationBox(viewer.mesh, viewer.mixer, viewer.frameCount, viewer.fps);
+  viewer.framedBox = [box.min.toArray(), box.max.toArray()];
+  frameBox(box);
   showFrameNumber(0);
-  frameObject(gltf.scene);
   if (job.sheet) elements.sheet.src = job.sheet; else elements.sheet.removeAttribute('src');
   const { frame_count, fps, compressed_outputs, outputs, handle_fit_error, inverted_triangles, timings } = report;
   elements.report.textContent = JSON.stringify({ job: report.job, frame_count, fps, compressed_outputs, outputs,
