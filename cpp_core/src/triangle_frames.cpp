@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "huge_pages.h"
 #include "simd_clones.h"
 
 namespace meshik {
@@ -29,9 +30,9 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
                                        int num_triangles) {
   TriangleFrames frames;
   frames.num_triangles = num_triangles;
-  frames.gradient.resize(6 * static_cast<size_t>(num_triangles));
-  frames.plane_basis.resize(6 * static_cast<size_t>(num_triangles));
-  frames.frame_inverse.resize(9 * static_cast<size_t>(num_triangles));
+  assign_on_huge_pages(frames.gradient, 6 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0);
   for (int j = 0; j < num_triangles; ++j) {
     const Eigen::Vector3d a = corner(rest, triangles, j, 0);
     const Eigen::Vector3d e1 = corner(rest, triangles, j, 1) - a;
@@ -65,14 +66,16 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
 
 Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
                                      const double* vertices, int j) {
+  double lanes[9][kGradientLanes];
+  deformation_gradients(frames, triangles, vertices, j, 1, lanes);
   Eigen::Matrix3d t;
-  deformation_gradients(frames, triangles, vertices, j, 1, &t);
+  for (int e = 0; e < 9; ++e) t(e / 3, e % 3) = lanes[e][0];
   return t;
 }
 
 MESHIK_SIMD_CLONES
 void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
-                           int count, Eigen::Matrix3d* t) {
+                           int count, double (&t)[9][kGradientLanes]) {
   constexpr int N = kGradientLanes;
   // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
   // lanes past count repeat the last triangle.
@@ -99,15 +102,11 @@ void deformation_gradients(const TriangleFrames& frames, const int* triangles, c
     d[5][l] = flat ? 0.0 : n1 / root;
     d[8][l] = flat ? 0.0 : n2 / root;
   }
-  double product[9][N];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       for (int l = 0; l < N; ++l)
-        product[3 * r + c][l] = d[3 * r][l] * inverse[c][l] + d[3 * r + 1][l] * inverse[3 + c][l] +
-                                d[3 * r + 2][l] * inverse[6 + c][l];
-  for (int l = 0; l < count; ++l)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) t[l](r, c) = product[3 * r + c][l];
+        t[3 * r + c][l] = d[3 * r][l] * inverse[c][l] + d[3 * r + 1][l] * inverse[3 + c][l] +
+                          d[3 * r + 2][l] * inverse[6 + c][l];
 }
 
 }  // namespace meshik
