@@ -120,18 +120,20 @@ void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&
   // work goes on local arrays, which the compiler knows alias nothing (SIMD without checks).
   double m[9][N], x[9][N], sym[9][N], phi[3][N];
   std::memcpy(m, t, sizeof m);
-  bool newton[N];
+  // det T - kMinRelativeDeterminant |T|_F^3 per lane: positive for the lanes Newton serves.
+  // (Lane arrays of doubles, not bools: a bool among doubles keeps a loop from SIMD.)
+  double margin[N], norm_squared[N] = {};
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) norm_squared[l] += m[e][l] * m[e][l];
   for (int l = 0; l < N; ++l) {
     const double det = m[0][l] * (m[4][l] * m[8][l] - m[5][l] * m[7][l]) +
                        m[1][l] * (m[5][l] * m[6][l] - m[3][l] * m[8][l]) +
                        m[2][l] * (m[3][l] * m[7][l] - m[4][l] * m[6][l]);
-    double norm_squared = 0.0;
-    for (int e = 0; e < 9; ++e) norm_squared += m[e][l] * m[e][l];
-    const double norm = std::sqrt(norm_squared);
-    newton[l] = (l < count) & (det > kMinRelativeDeterminant * norm * norm * norm);
+    const double norm = std::sqrt(norm_squared[l]);
+    margin[l] = l < count ? det - kMinRelativeDeterminant * norm * norm * norm : -1.0;
   }
   for (int e = 0; e < 9; ++e)
-    for (int l = 0; l < N; ++l) x[e][l] = newton[l] ? m[e][l] : (e % 4 == 0 ? 1.0 : 0.0);
+    for (int l = 0; l < N; ++l) x[e][l] = margin[l] > 0.0 ? m[e][l] : (e % 4 == 0 ? 1.0 : 0.0);
   bool converged[N];
   newton_polar_lanes(x, converged);
 
@@ -144,7 +146,7 @@ void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&
         const double cr = x[c][l] * m[r][l] + x[3 + c][l] * m[3 + r][l] + x[6 + c][l] * m[6 + r][l];
         sym[3 * r + c][l] = 0.5 * (rc + cr);
       }
-  bool log_done[N];
+  double cosine[N];
   for (int l = 0; l < N; ++l) {
     const double v0 = 0.5 * (x[7][l] - x[5][l]), v1 = 0.5 * (x[2][l] - x[6][l]), v2 = 0.5 * (x[3][l] - x[1][l]);
     const double trace_term = 0.5 * (x[0][l] + x[4][l] + x[8][l] - 1.0);
@@ -158,7 +160,7 @@ void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&
     phi[0][l] = theta_over_sin * v0;
     phi[1][l] = theta_over_sin * v1;
     phi[2][l] = theta_over_sin * v2;
-    log_done[l] = cos_theta > -0.5;
+    cosine[l] = cos_theta;  // (a bool written here would keep the loop from SIMD)
   }
   std::memcpy(rotation, x, sizeof x);
   std::memcpy(stretch, sym, sizeof sym);
@@ -166,8 +168,8 @@ void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&
 
   // The rare lanes the iteration does not serve: the SVD, and so3_log near a half turn.
   for (int l = 0; l < count; ++l) {
-    const bool svd = !newton[l] || !converged[l];
-    if (!svd && log_done[l]) continue;
+    const bool svd = !(margin[l] > 0.0) || !converged[l];
+    if (!svd && cosine[l] > -0.5) continue;
     Eigen::Matrix3d r;
     for (int e = 0; e < 9; ++e) r(e / 3, e % 3) = rotation[e][l];
     if (svd) {
