@@ -19,23 +19,30 @@ Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vec
 
 namespace {
 
-// The frames of the count (1 <= count <= kGradientLanes) triangles first, first + 1, ..., all
-// lanes at once, written to their rows of frames' arrays.
-MESHIK_SIMD_CLONES
-void frames_of_batch(const double* rest, const int* triangles, int first, int count, TriangleFrames& frames) {
-  constexpr int N = kGradientLanes;
-  // Edges e1 = v2 - v1, e2 = v3 - v1 per lane (lanes past count repeat the last triangle).
-  double e1[3][N], e2[3][N];
-  for (int l = 0; l < N; ++l) {
+// The edges e1 = v2 - v1 and e2 = v3 - v1 of the count (1 <= count <= kGradientLanes) triangles
+// first, first + 1, ... of the mesh with positions `vertices` (#V by 3), one lane each (lanes
+// past count repeat the last triangle).
+MESHIK_LANE_INLINE void edge_lanes(const double* vertices, const int* triangles, int first, int count,
+                                   double (&e1)[3][kGradientLanes], double (&e2)[3][kGradientLanes]) {
+  for (int l = 0; l < kGradientLanes; ++l) {
     const int j = first + (l < count ? l : count - 1);
-    const double* a = rest + 3 * static_cast<size_t>(triangles[3 * j]);
-    const double* b = rest + 3 * static_cast<size_t>(triangles[3 * j + 1]);
-    const double* c = rest + 3 * static_cast<size_t>(triangles[3 * j + 2]);
+    const double* a = vertices + 3 * static_cast<size_t>(triangles[3 * j]);
+    const double* b = vertices + 3 * static_cast<size_t>(triangles[3 * j + 1]);
+    const double* c = vertices + 3 * static_cast<size_t>(triangles[3 * j + 2]);
     for (int r = 0; r < 3; ++r) {
       e1[r][l] = b[r] - a[r];
       e2[r][l] = c[r] - a[r];
     }
   }
+}
+
+// The frames of the count (1 <= count <= kGradientLanes) triangles first, first + 1, ..., all
+// lanes at once, written to their rows of frames' arrays.
+MESHIK_SIMD_CLONES
+void frames_of_batch(const double* rest, const int* triangles, int first, int count, TriangleFrames& frames) {
+  constexpr int N = kGradientLanes;
+  double e1[3][N], e2[3][N];
+  edge_lanes(rest, triangles, first, count, e1, e2);
   double inverse[9][N], basis[6][N], gradient[6][N];
   for (int l = 0; l < N; ++l) {
     // n = e1 x e2; the fourth vertex's offset f = n / sqrt|n| (fourth_vertex_offset).
@@ -116,15 +123,13 @@ void deformation_gradients(const TriangleFrames& frames, const int* triangles, c
   constexpr int N = kGradientLanes;
   // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
   // lanes past count repeat the last triangle.
-  double d[9][N], inverse[9][N];
+  double d[9][N], inverse[9][N], e1[3][N], e2[3][N];
+  edge_lanes(vertices, triangles, first, count, e1, e2);
   for (int l = 0; l < N; ++l) {
     const int j = first + (l < count ? l : count - 1);
-    const double* a = vertices + 3 * static_cast<size_t>(triangles[3 * j]);
-    const double* b = vertices + 3 * static_cast<size_t>(triangles[3 * j + 1]);
-    const double* c = vertices + 3 * static_cast<size_t>(triangles[3 * j + 2]);
     for (int r = 0; r < 3; ++r) {
-      d[3 * r][l] = b[r] - a[r];
-      d[3 * r + 1][l] = c[r] - a[r];
+      d[3 * r][l] = e1[r][l];
+      d[3 * r + 1][l] = e2[r][l];
     }
     for (int e = 0; e < 9; ++e) inverse[e][l] = frames.frame_inverse[9 * static_cast<size_t>(j) + e];
   }
