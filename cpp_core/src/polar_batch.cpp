@@ -58,8 +58,9 @@ MESHIK_LANE_INLINE double atan2_upper(double s, double c) {
 }
 
 // One scaled Newton step on all lanes of x (9 rows of N lanes, row-major entries), in place;
-// step[l]: in, lane l's previous step length (it decides the scaling); out, this one's.
-MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) {
+// step_squared[l]: in, the square of lane l's previous step length (it decides the scaling);
+// out, this one's. (Squares: no square root waits at the end of each step.)
+MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step_squared)[N]) {
   double c[9][N], det[N], half_g[N], half_inverse[N];
   // Cofactors: X^{-T} = C / det X.
   for (int l = 0; l < N; ++l) {
@@ -80,10 +81,13 @@ MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) 
       norm_x[l] += x[e][l] * x[e][l];
       norm_c[l] += c[e][l] * c[e][l];
     }
+  // (omp simd: else the compiler unrolls this loop over lanes and leaves its divisions and
+  // square roots scalar.)
+#pragma omp simd
   for (int l = 0; l < N; ++l) {
     // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2), only while far from converged.
     const double scaled = std::sqrt(std::sqrt(norm_c[l] / norm_x[l]) / std::abs(det[l]));
-    const double g = step[l] > kScaleWhileStepAbove ? scaled : 1.0;
+    const double g = step_squared[l] > kScaleWhileStepAbove * kScaleWhileStepAbove ? scaled : 1.0;
     half_g[l] = 0.5 * g;
     half_inverse[l] = 0.5 / (g * det[l]);
   }
@@ -94,21 +98,24 @@ MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) 
       change[l] += (next - x[e][l]) * (next - x[e][l]);
       x[e][l] = next;
     }
-  for (int l = 0; l < N; ++l) step[l] = std::sqrt(change[l]);
+  for (int l = 0; l < N; ++l) step_squared[l] = change[l];
 }
 
 // Newton iteration on x (9 rows of N lanes), in place, until every lane's step is below
 // kConvergedStep or kMaxSteps. Returns in converged[l] whether lane l got there.
 MESHIK_LANE_INLINE void newton_polar_lanes(double (&x)[9][N], bool (&converged)[N]) {
-  double step[N];
-  for (int l = 0; l < N; ++l) step[l] = 1.0;
+  constexpr double kConvergedSquared = kConvergedStep * kConvergedStep;
+  double step_squared[N];
+  for (int l = 0; l < N; ++l) step_squared[l] = 1.0;
   for (int iteration = 0; iteration < kMaxSteps; ++iteration) {
-    newton_step_lanes(x, step);
-    int pending = 0;
-    for (int l = 0; l < N; ++l) pending += !(step[l] < kConvergedStep);
-    if (pending == 0) break;
+    newton_step_lanes(x, step_squared);
+    // Lanes still moving (a NaN step counts: !(NaN < bound)).
+    double pending = 0.0;
+#pragma omp simd reduction(+ : pending)
+    for (int l = 0; l < N; ++l) pending += step_squared[l] < kConvergedSquared ? 0.0 : 1.0;
+    if (pending == 0.0) break;
   }
-  for (int l = 0; l < N; ++l) converged[l] = step[l] < kConvergedStep;
+  for (int l = 0; l < N; ++l) converged[l] = step_squared[l] < kConvergedSquared;
 }
 
 }  // namespace
