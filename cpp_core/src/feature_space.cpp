@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "huge_pages.h"
 #include "lane_math.h"
 #include "polar_batch.h"
 #include "rotation_branches.h"
@@ -25,6 +26,18 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
     for (int c = 0; c < 2; ++c) block[(first_row + 2 * r + c) * kLanes + lane] = m(r, c);
 }
 
+// (M - I) U for a batch: m, 9 rows of kLanes (M row-major), basis U, 6 rows of kLanes (3 by 2
+// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes).
+MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, double* out) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 2; ++c)
+      for (int l = 0; l < kLanes; ++l) {
+        double sum = 0.0;
+        for (int q = 0; q < 3; ++q) sum += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
+        out[(2 * r + c) * kLanes + l] = sum;
+      }
+}
+
 // Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
 // rows of 2 kLanes floats, the first batch's lanes first: one pair of kCurvatureBatches.
 MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
@@ -42,7 +55,8 @@ static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
 std::vector<float> paired_single(const std::vector<double>& blocks, int num_batches, int rows) {
   const size_t batch_size = static_cast<size_t>(rows) * kLanes;
   const int pairs = (num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
-  std::vector<float> paired(static_cast<size_t>(pairs) * kCurvatureBatches * batch_size);
+  std::vector<float> paired;
+  assign_on_huge_pages(paired, static_cast<size_t>(pairs) * kCurvatureBatches * batch_size, 0.0f);
   for (int batch = 0; batch < num_batches; batch += kCurvatureBatches) {
     const double* first = blocks.data() + batch * batch_size;
     narrow_pair(first, batch + 1 < num_batches ? first + batch_size : nullptr, rows, paired.data() + batch * batch_size);
@@ -62,7 +76,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
   // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
   const int group_size = std::max(1, std::min(team, k));
-  std::vector<Eigen::Matrix3d> rotations(m);
+  std::vector<Eigen::Matrix3d> rotations;
+  assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
   std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
   std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
   for (int group = 0; group < k; group += group_size) {
@@ -76,16 +91,16 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
 #pragma omp for schedule(static)
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
-          Eigen::Matrix3d t[kLanes], stretch[kLanes];
+          double t[9][kLanes], rotation[9][kLanes], stretch[9][kLanes], log[3][kLanes];
           deformation_gradients(frames, triangles, examples[i], first, count, t);
-          polar_and_log_batch(t, count, &rotations[first], stretch, &logs[g][first]);
+          polar_and_log_batch(t, count, rotation, stretch, log);
           const size_t block = static_cast<size_t>(batch) * k + i;
+          const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
+          minus_identity_on_plane(stretch, basis, features.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
+          minus_identity_on_plane(t, basis, features.linear.data() + 6 * kLanes * block);
           for (int l = 0; l < count; ++l) {
-            const auto basis = plane_basis_of(frames, first + l);
-            store_rows((stretch[l] - Eigen::Matrix3d::Identity()) * basis,
-                       features.nonlinear.data() + 9 * kLanes * block, 3, l);
-            store_rows((t[l] - Eigen::Matrix3d::Identity()) * basis, features.linear.data() + 6 * kLanes * block,
-                       0, l);
+            for (int e = 0; e < 9; ++e) rotations[first + l](e / 3, e % 3) = rotation[e][l];
+            logs[g][first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
           }
         }
         if (consistent_branches) {
@@ -125,9 +140,9 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
   features.num_triangles = m;
   features.num_batches = (m + kLanes - 1) / kLanes;
   const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
-  features.nonlinear.assign(9 * slots * k, 0.0);
-  features.linear.assign(6 * slots * k, 0.0);
-  features.plane_basis.assign(6 * slots, 0.0);
+  assign_on_huge_pages(features.nonlinear, 9 * slots * k, 0.0);
+  assign_on_huge_pages(features.linear, 6 * slots * k, 0.0);
+  assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0);
   for (int j = 0; j < m; ++j)
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);

@@ -3,8 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/LU>
+#include <cstring>
 
 #include "simd_clones.h"
 #include "so3.h"
@@ -30,7 +29,8 @@ MESHIK_LANE_INLINE double atan_unit(double t) {
   constexpr double kTanPiOver8 = 0.41421356237309504880;
   constexpr double kPiOver4 = 0.78539816339744830962;
   const bool reduce = t > kTanPiOver8;
-  const double u = reduce ? (t - 1.0) / (t + 1.0) : t;
+  const double reduced = (t - 1.0) / (t + 1.0);  // both sides computed: a select, not a branch
+  const double u = reduce ? reduced : t;
   const double z = u * u, w = z * z;
   const double s1 = z * (3.33333333333329318027e-01 +
                          w * (1.42857142725034663711e-01 +
@@ -50,15 +50,17 @@ MESHIK_LANE_INLINE double atan2_upper(double s, double c) {
   constexpr double kPiOver2 = 1.57079632679489661923, kPi = 3.14159265358979323846;
   const double a = std::abs(c);
   const bool steep = s > a;
-  const double t = steep ? a / s : s / std::max(a, 1e-300);
+  // One division of selected operands (a division under a condition keeps the loop from SIMD).
+  const double t = (steep ? a : s) / (steep ? s : (a > 1e-300 ? a : 1e-300));
   double angle = atan_unit(t);
   angle = steep ? kPiOver2 - angle : angle;
   return c < 0.0 ? kPi - angle : angle;
 }
 
 // One scaled Newton step on all lanes of x (9 rows of N lanes, row-major entries), in place;
-// step[l]: in, lane l's previous step length (it decides the scaling); out, this one's.
-MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) {
+// step_squared[l]: in, the square of lane l's previous step length (it decides the scaling);
+// out, this one's. (Squares: no square root waits at the end of each step.)
+MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step_squared)[N]) {
   double c[9][N], det[N], half_g[N], half_inverse[N];
   // Cofactors: X^{-T} = C / det X.
   for (int l = 0; l < N; ++l) {
@@ -73,15 +75,19 @@ MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) 
     c[8][l] = x[0][l] * x[4][l] - x[1][l] * x[3][l];
     det[l] = x[0][l] * c[0][l] + x[1][l] * c[1][l] + x[2][l] * c[2][l];
   }
-  for (int l = 0; l < N; ++l) {
-    double norm_x = 0.0, norm_c = 0.0;
-    for (int e = 0; e < 9; ++e) {
-      norm_x += x[e][l] * x[e][l];
-      norm_c += c[e][l] * c[e][l];
+  double norm_x[N] = {}, norm_c[N] = {};
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) {
+      norm_x[l] += x[e][l] * x[e][l];
+      norm_c[l] += c[e][l] * c[e][l];
     }
+  // (omp simd: else the compiler unrolls this loop over lanes and leaves its divisions and
+  // square roots scalar.)
+#pragma omp simd
+  for (int l = 0; l < N; ++l) {
     // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2), only while far from converged.
-    const double scaled = std::sqrt(std::sqrt(norm_c / norm_x) / std::abs(det[l]));
-    const double g = step[l] > kScaleWhileStepAbove ? scaled : 1.0;
+    const double scaled = std::sqrt(std::sqrt(norm_c[l] / norm_x[l]) / std::abs(det[l]));
+    const double g = step_squared[l] > kScaleWhileStepAbove * kScaleWhileStepAbove ? scaled : 1.0;
     half_g[l] = 0.5 * g;
     half_inverse[l] = 0.5 / (g * det[l]);
   }
@@ -92,75 +98,99 @@ MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step)[N]) 
       change[l] += (next - x[e][l]) * (next - x[e][l]);
       x[e][l] = next;
     }
-  for (int l = 0; l < N; ++l) step[l] = std::sqrt(change[l]);
+  for (int l = 0; l < N; ++l) step_squared[l] = change[l];
 }
 
 // Newton iteration on x (9 rows of N lanes), in place, until every lane's step is below
 // kConvergedStep or kMaxSteps. Returns in converged[l] whether lane l got there.
 MESHIK_LANE_INLINE void newton_polar_lanes(double (&x)[9][N], bool (&converged)[N]) {
-  double step[N];
-  for (int l = 0; l < N; ++l) step[l] = 1.0;
+  constexpr double kConvergedSquared = kConvergedStep * kConvergedStep;
+  double step_squared[N];
+  for (int l = 0; l < N; ++l) step_squared[l] = 1.0;
   for (int iteration = 0; iteration < kMaxSteps; ++iteration) {
-    newton_step_lanes(x, step);
-    int pending = 0;
-    for (int l = 0; l < N; ++l) pending += !(step[l] < kConvergedStep);
-    if (pending == 0) break;
+    newton_step_lanes(x, step_squared);
+    // Lanes still moving (a NaN step counts: !(NaN < bound)).
+    double pending = 0.0;
+#pragma omp simd reduction(+ : pending)
+    for (int l = 0; l < N; ++l) pending += step_squared[l] < kConvergedSquared ? 0.0 : 1.0;
+    if (pending == 0.0) break;
   }
-  for (int l = 0; l < N; ++l) converged[l] = step[l] < kConvergedStep;
+  for (int l = 0; l < N; ++l) converged[l] = step_squared[l] < kConvergedSquared;
 }
 
 }  // namespace
 
 MESHIK_SIMD_CLONES
-void polar_and_log_batch(const Eigen::Matrix3d* t, int count, Eigen::Matrix3d* rotation,
-                         Eigen::Matrix3d* stretch, Eigen::Vector3d* log) {
-  // Lanes past count and lanes for the SVD iterate on the identity (converged at once).
-  double x[9][N];
-  bool newton[N];
+void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&rotation)[9][kPolarLanes],
+                         double (&stretch)[9][kPolarLanes], double (&log)[3][kPolarLanes]) {
+  // Lanes past count and lanes for the SVD iterate on the identity (converged at once). The
+  // work goes on local arrays, which the compiler knows alias nothing (SIMD without checks).
+  double m[9][N], x[9][N], sym[9][N], phi[3][N];
+  std::memcpy(m, t, sizeof m);
+  // det T - kMinRelativeDeterminant |T|_F^3 per lane: positive for the lanes Newton serves.
+  // (Lane arrays of doubles, not bools: a bool among doubles keeps a loop from SIMD.)
+  double margin[N], norm_squared[N] = {};
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) norm_squared[l] += m[e][l] * m[e][l];
   for (int l = 0; l < N; ++l) {
-    newton[l] = false;
-    if (l < count) {
-      const Eigen::Matrix3d& m = t[l];
-      const double norm = m.norm();
-      newton[l] = m.determinant() > kMinRelativeDeterminant * norm * norm * norm;
-    }
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) x[3 * r + c][l] = newton[l] ? t[l](r, c) : (r == c ? 1.0 : 0.0);
+    const double det = m[0][l] * (m[4][l] * m[8][l] - m[5][l] * m[7][l]) +
+                       m[1][l] * (m[5][l] * m[6][l] - m[3][l] * m[8][l]) +
+                       m[2][l] * (m[3][l] * m[7][l] - m[4][l] * m[6][l]);
+    const double norm = std::sqrt(norm_squared[l]);
+    margin[l] = l < count ? det - kMinRelativeDeterminant * norm * norm * norm : -1.0;
   }
+  for (int e = 0; e < 9; ++e)
+    for (int l = 0; l < N; ++l) x[e][l] = margin[l] > 0.0 ? m[e][l] : (e % 4 == 0 ? 1.0 : 0.0);
   bool converged[N];
   newton_polar_lanes(x, converged);
 
-  // The logs, for lanes whose angle is below 2 pi / 3 (v = sin(theta) axis, see so3_log).
-  double log_lanes[3][N];
-  bool log_done[N];
+  // S = sym(R^T T), and the logs for lanes whose angle is below 2 pi / 3 (v = sin(theta) axis,
+  // see so3_log).
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      for (int l = 0; l < N; ++l) {
+        const double rc = x[r][l] * m[c][l] + x[3 + r][l] * m[3 + c][l] + x[6 + r][l] * m[6 + c][l];
+        const double cr = x[c][l] * m[r][l] + x[3 + c][l] * m[3 + r][l] + x[6 + c][l] * m[6 + r][l];
+        sym[3 * r + c][l] = 0.5 * (rc + cr);
+      }
+  double cosine[N];
   for (int l = 0; l < N; ++l) {
     const double v0 = 0.5 * (x[7][l] - x[5][l]), v1 = 0.5 * (x[2][l] - x[6][l]), v2 = 0.5 * (x[3][l] - x[1][l]);
-    const double cos_theta = std::clamp(0.5 * (x[0][l] + x[4][l] + x[8][l] - 1.0), -1.0, 1.0);
+    const double trace_term = 0.5 * (x[0][l] + x[4][l] + x[8][l] - 1.0);
+    const double cos_theta = trace_term < -1.0 ? -1.0 : (trace_term > 1.0 ? 1.0 : trace_term);
     const double sin_theta = std::sqrt(v0 * v0 + v1 * v1 + v2 * v2);
     const double theta = atan2_upper(sin_theta, cos_theta);
     const double t2 = theta * theta;
-    const double theta_over_sin =
-        t2 < 1e-6 ? 1.0 + t2 / 6.0 * (1.0 + 7.0 * t2 / 60.0) : theta / std::max(sin_theta, 1e-300);
-    log_lanes[0][l] = theta_over_sin * v0;
-    log_lanes[1][l] = theta_over_sin * v1;
-    log_lanes[2][l] = theta_over_sin * v2;
-    log_done[l] = cos_theta > -0.5;
+    const double ratio = theta / (sin_theta > 1e-300 ? sin_theta : 1e-300);
+    const double series = 1.0 + t2 / 6.0 * (1.0 + 7.0 * t2 / 60.0);
+    const double theta_over_sin = t2 < 1e-6 ? series : ratio;
+    phi[0][l] = theta_over_sin * v0;
+    phi[1][l] = theta_over_sin * v1;
+    phi[2][l] = theta_over_sin * v2;
+    cosine[l] = cos_theta;  // (a bool written here would keep the loop from SIMD)
   }
+  std::memcpy(rotation, x, sizeof x);
+  std::memcpy(stretch, sym, sizeof sym);
+  std::memcpy(log, phi, sizeof phi);
 
+  // The rare lanes the iteration does not serve: the SVD, and so3_log near a half turn.
   for (int l = 0; l < count; ++l) {
-    if (!newton[l] || !converged[l]) {
-      const PolarDecomposition polar = polar_decomposition(t[l]);
-      rotation[l] = polar.rotation;
-      stretch[l] = polar.stretch;
-      log[l] = so3_log(polar.rotation);
-      continue;
+    const bool svd = !(margin[l] > 0.0) || !converged[l];
+    if (!svd && cosine[l] > -0.5) continue;
+    Eigen::Matrix3d r;
+    for (int e = 0; e < 9; ++e) r(e / 3, e % 3) = rotation[e][l];
+    if (svd) {
+      Eigen::Matrix3d matrix;
+      for (int e = 0; e < 9; ++e) matrix(e / 3, e % 3) = t[e][l];
+      const PolarDecomposition polar = polar_decomposition(matrix);
+      r = polar.rotation;
+      for (int e = 0; e < 9; ++e) {
+        rotation[e][l] = polar.rotation(e / 3, e % 3);
+        stretch[e][l] = polar.stretch(e / 3, e % 3);
+      }
     }
-    Eigen::Matrix3d& r = rotation[l];
-    for (int row = 0; row < 3; ++row)
-      for (int c = 0; c < 3; ++c) r(row, c) = x[3 * row + c][l];
-    const Eigen::Matrix3d s = r.transpose() * t[l];
-    stretch[l] = 0.5 * (s + s.transpose());
-    log[l] = log_done[l] ? Eigen::Vector3d(log_lanes[0][l], log_lanes[1][l], log_lanes[2][l]) : so3_log(r);
+    const Eigen::Vector3d phi = so3_log(r);
+    for (int d = 0; d < 3; ++d) log[d][l] = phi(d);
   }
 }
 

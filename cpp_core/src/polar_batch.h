@@ -9,17 +9,17 @@
 // from so3_log, the others from the lanes' own atan2.
 #pragma once
 
-#include <Eigen/Core>
-
 namespace meshik {
 
 // Matrices a batch holds (one AVX-512 register of doubles per entry).
 constexpr int kPolarLanes = 8;
 
-// t: count (<= kPolarLanes) matrices. Writes for each its proper polar decomposition
-// t = rotation stretch (rotation: det +1; stretch: symmetric) and log (so3_log(rotation)).
-// Each result depends only on the batch's matrices (no thread or call order enters).
-void polar_and_log_batch(const Eigen::Matrix3d* t, int count, Eigen::Matrix3d* rotation,
-                         Eigen::Matrix3d* stretch, Eigen::Vector3d* log);
+// t: count (<= kPolarLanes) matrices in lanes, entry (r, c) of lane l at t[3 r + c][l]. Writes
+// for each, in lanes alike, its proper polar decomposition t = rotation stretch (rotation:
+// det +1; stretch: symmetric; 9 rows each) and log (so3_log(rotation), 3 rows); lanes past
+// count hold no result. Each result depends only on the batch's matrices (no thread or call
+// order enters).
+void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&rotation)[9][kPolarLanes],
+                         double (&stretch)[9][kPolarLanes], double (&log)[3][kPolarLanes]);
 
 }  // namespace meshik

@@ -1,23 +1,15 @@
 // Rest frames, plane bases and in-plane gradient coefficients of every triangle.
 #include "triangle_frames.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
-#include <Eigen/LU>
 
+#include "huge_pages.h"
 #include "simd_clones.h"
 
 namespace meshik {
-
-namespace {
-
-Eigen::Vector3d corner(const double* vertices, const int* triangles, int j, int q) {
-  const double* p = vertices + 3 * static_cast<size_t>(triangles[3 * j + q]);
-  return Eigen::Vector3d(p[0], p[1], p[2]);
-}
-
-}  // namespace
 
 Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
   const Eigen::Vector3d n = e1.cross(e2);
@@ -25,66 +17,119 @@ Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vec
   return length > 0.0 ? Eigen::Vector3d(n / std::sqrt(length)) : Eigen::Vector3d::Zero();
 }
 
-TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
-                                       int num_triangles) {
-  TriangleFrames frames;
-  frames.num_triangles = num_triangles;
-  frames.gradient.resize(6 * static_cast<size_t>(num_triangles));
-  frames.plane_basis.resize(6 * static_cast<size_t>(num_triangles));
-  frames.frame_inverse.resize(9 * static_cast<size_t>(num_triangles));
-  for (int j = 0; j < num_triangles; ++j) {
-    const Eigen::Vector3d a = corner(rest, triangles, j, 0);
-    const Eigen::Vector3d e1 = corner(rest, triangles, j, 1) - a;
-    const Eigen::Vector3d e2 = corner(rest, triangles, j, 2) - a;
-    Eigen::Matrix3d frame;
-    frame << e1, e2, fourth_vertex_offset(e1, e2);
-    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(frames.frame_inverse.data() + 9 * j) =
-        frame.inverse();
+namespace {
 
-    // U = [u1 u2]: u1 along e1, u2 = normal x u1.
-    const Eigen::Vector3d u1 = e1.normalized();
-    const Eigen::Vector3d u2 = e1.cross(e2).normalized().cross(u1);
-    Eigen::Map<Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> basis(frames.plane_basis.data() + 6 * j);
-    basis << u1, u2;
-
-    // Edges in plane coordinates E = U^T [e1 e2] (upper triangular); Q(X) = [x2-x1, x3-x1] E^{-1},
-    // so g_2 and g_3 are the rows of E^{-1}.
-    Eigen::Matrix2d edges;
-    edges << e1.dot(u1), e2.dot(u1), 0.0, e2.dot(u2);
-    const Eigen::Matrix2d inverse = edges.inverse();
-    double* g = frames.gradient.data() + 6 * j;
-    g[2] = inverse(0, 0);
-    g[3] = inverse(0, 1);
-    g[4] = inverse(1, 0);
-    g[5] = inverse(1, 1);
-    g[0] = -(g[2] + g[4]);
-    g[1] = -(g[3] + g[5]);
-  }
-  return frames;
-}
-
-Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
-                                     const double* vertices, int j) {
-  Eigen::Matrix3d t;
-  deformation_gradients(frames, triangles, vertices, j, 1, &t);
-  return t;
-}
-
-MESHIK_SIMD_CLONES
-void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
-                           int count, Eigen::Matrix3d* t) {
-  constexpr int N = kGradientLanes;
-  // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
-  // lanes past count repeat the last triangle.
-  double d[9][N], inverse[9][N];
-  for (int l = 0; l < N; ++l) {
+// The edges e1 = v2 - v1 and e2 = v3 - v1 of the count (1 <= count <= kGradientLanes) triangles
+// first, first + 1, ... of the mesh with positions `vertices` (#V by 3), one lane each (lanes
+// past count repeat the last triangle).
+MESHIK_LANE_INLINE void edge_lanes(const double* vertices, const int* triangles, int first, int count,
+                                   double (&e1)[3][kGradientLanes], double (&e2)[3][kGradientLanes]) {
+  for (int l = 0; l < kGradientLanes; ++l) {
     const int j = first + (l < count ? l : count - 1);
     const double* a = vertices + 3 * static_cast<size_t>(triangles[3 * j]);
     const double* b = vertices + 3 * static_cast<size_t>(triangles[3 * j + 1]);
     const double* c = vertices + 3 * static_cast<size_t>(triangles[3 * j + 2]);
     for (int r = 0; r < 3; ++r) {
-      d[3 * r][l] = b[r] - a[r];
-      d[3 * r + 1][l] = c[r] - a[r];
+      e1[r][l] = b[r] - a[r];
+      e2[r][l] = c[r] - a[r];
+    }
+  }
+}
+
+// The frames of the count (1 <= count <= kGradientLanes) triangles first, first + 1, ..., all
+// lanes at once, written to their rows of frames' arrays.
+MESHIK_SIMD_CLONES
+void frames_of_batch(const double* rest, const int* triangles, int first, int count, TriangleFrames& frames) {
+  constexpr int N = kGradientLanes;
+  double e1[3][N], e2[3][N];
+  edge_lanes(rest, triangles, first, count, e1, e2);
+  double inverse[9][N], basis[6][N], gradient[6][N];
+  for (int l = 0; l < N; ++l) {
+    // n = e1 x e2; the fourth vertex's offset f = n / sqrt|n| (fourth_vertex_offset).
+    const double n0 = e1[1][l] * e2[2][l] - e1[2][l] * e2[1][l];
+    const double n1 = e1[2][l] * e2[0][l] - e1[0][l] * e2[2][l];
+    const double n2 = e1[0][l] * e2[1][l] - e1[1][l] * e2[0][l];
+    const double length = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+    const bool flat = !(length > 0.0);
+    const double root = flat ? 1.0 : std::sqrt(length);
+    const double f0 = flat ? 0.0 : n0 / root, f1 = flat ? 0.0 : n1 / root, f2 = flat ? 0.0 : n2 / root;
+    // V = [e1 e2 f]: the rows of V^{-1} are e2 x f, f x e1 and e1 x e2 over det V.
+    const double c00 = e2[1][l] * f2 - e2[2][l] * f1, c01 = e2[2][l] * f0 - e2[0][l] * f2,
+                 c02 = e2[0][l] * f1 - e2[1][l] * f0;
+    const double c10 = f1 * e1[2][l] - f2 * e1[1][l], c11 = f2 * e1[0][l] - f0 * e1[2][l],
+                 c12 = f0 * e1[1][l] - f1 * e1[0][l];
+    const double inverse_det = 1.0 / (e1[0][l] * c00 + e1[1][l] * c01 + e1[2][l] * c02);
+    const double row[9] = {c00, c01, c02, c10, c11, c12, n0, n1, n2};
+    for (int e = 0; e < 9; ++e) inverse[e][l] = row[e] * inverse_det;
+
+    // U = [u1 u2]: u1 along e1, u2 = (n / |n|) x u1.
+    const double inverse_e1 = 1.0 / std::sqrt(e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l]);
+    const double u1[3] = {e1[0][l] * inverse_e1, e1[1][l] * inverse_e1, e1[2][l] * inverse_e1};
+    const double inverse_n = 1.0 / (flat ? 1.0 : length);
+    const double m0 = n0 * inverse_n, m1 = n1 * inverse_n, m2 = n2 * inverse_n;
+    const double u2[3] = {m1 * u1[2] - m2 * u1[1], m2 * u1[0] - m0 * u1[2], m0 * u1[1] - m1 * u1[0]};
+    for (int r = 0; r < 3; ++r) {
+      basis[2 * r][l] = u1[r];
+      basis[2 * r + 1][l] = u2[r];
+    }
+
+    // Edges in plane coordinates E = U^T [e1 e2] = [p q; 0 s] (upper triangular); Q(X) =
+    // [x2-x1, x3-x1] E^{-1}, so g_2 and g_3 are the rows of E^{-1} = [1/p, -q/(p s); 0, 1/s].
+    const double p = e1[0][l] * u1[0] + e1[1][l] * u1[1] + e1[2][l] * u1[2];
+    const double q = e2[0][l] * u1[0] + e2[1][l] * u1[1] + e2[2][l] * u1[2];
+    const double s = e2[0][l] * u2[0] + e2[1][l] * u2[1] + e2[2][l] * u2[2];
+    const double inverse_ps = 1.0 / (p * s);
+    gradient[2][l] = s * inverse_ps;
+    gradient[3][l] = -q * inverse_ps;
+    gradient[4][l] = 0.0;
+    gradient[5][l] = p * inverse_ps;
+    gradient[0][l] = -(gradient[2][l] + gradient[4][l]);
+    gradient[1][l] = -(gradient[3][l] + gradient[5][l]);
+  }
+  for (int l = 0; l < count; ++l) {
+    const size_t j = static_cast<size_t>(first + l);
+    for (int e = 0; e < 9; ++e) frames.frame_inverse[9 * j + e] = inverse[e][l];
+    for (int e = 0; e < 6; ++e) frames.plane_basis[6 * j + e] = basis[e][l];
+    for (int e = 0; e < 6; ++e) frames.gradient[6 * j + e] = gradient[e][l];
+  }
+}
+
+}  // namespace
+
+TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
+                                       int num_triangles) {
+  TriangleFrames frames;
+  frames.num_triangles = num_triangles;
+  assign_on_huge_pages(frames.gradient, 6 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0);
+  for (int first = 0; first < num_triangles; first += kGradientLanes)
+    frames_of_batch(rest, triangles, first, std::min(kGradientLanes, num_triangles - first), frames);
+  return frames;
+}
+
+Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
+                                     const double* vertices, int j) {
+  double lanes[9][kGradientLanes];
+  deformation_gradients(frames, triangles, vertices, j, 1, lanes);
+  Eigen::Matrix3d t;
+  for (int e = 0; e < 9; ++e) t(e / 3, e % 3) = lanes[e][0];
+  return t;
+}
+
+MESHIK_SIMD_CLONES
+void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
+                           int count, double (&t)[9][kGradientLanes]) {
+  constexpr int N = kGradientLanes;
+  // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
+  // lanes past count repeat the last triangle.
+  double d[9][N], inverse[9][N], e1[3][N], e2[3][N];
+  edge_lanes(vertices, triangles, first, count, e1, e2);
+  for (int l = 0; l < N; ++l) {
+    const int j = first + (l < count ? l : count - 1);
+    for (int r = 0; r < 3; ++r) {
+      d[3 * r][l] = e1[r][l];
+      d[3 * r + 1][l] = e2[r][l];
     }
     for (int e = 0; e < 9; ++e) inverse[e][l] = frames.frame_inverse[9 * static_cast<size_t>(j) + e];
   }
@@ -99,15 +144,11 @@ void deformation_gradients(const TriangleFrames& frames, const int* triangles, c
     d[5][l] = flat ? 0.0 : n1 / root;
     d[8][l] = flat ? 0.0 : n2 / root;
   }
-  double product[9][N];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       for (int l = 0; l < N; ++l)
-        product[3 * r + c][l] = d[3 * r][l] * inverse[c][l] + d[3 * r + 1][l] * inverse[3 + c][l] +
-                                d[3 * r + 2][l] * inverse[6 + c][l];
-  for (int l = 0; l < count; ++l)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) t[l](r, c) = product[3 * r + c][l];
+        t[3 * r + c][l] = d[3 * r][l] * inverse[c][l] + d[3 * r + 1][l] * inverse[3 + c][l] +
+                          d[3 * r + 2][l] * inverse[6 + c][l];
 }
 
 }  // namespace meshik

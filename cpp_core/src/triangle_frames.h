@@ -41,10 +41,11 @@ Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* tr
 // Triangles a deformation_gradients call takes at once (their arithmetic is SIMD).
 constexpr int kGradientLanes = 8;
 
-// deformation_gradient for the count (<= kGradientLanes) triangles first, first + 1, ...: writes
-// their gradients to t[0 .. count).
+// deformation_gradient for the count (1 <= count <= kGradientLanes) triangles first, first + 1,
+// ...: writes entry (r, c) of lane l's gradient to t[3 r + c][l] (lanes past count repeat the
+// last triangle's).
 void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
-                           int count, Eigen::Matrix3d* t);
+                           int count, double (&t)[9][kGradientLanes]);
 
 // Eigen views of one triangle's blocks.
 inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> plane_basis_of(

@@ -299,9 +299,20 @@ TEST(So3, BatchedPolarDecompositionMatchesTheSvdOne) {
   matrices.push_back(Eigen::Vector3d(1e6, 1, 1e-6).asDiagonal());  // condition 1e12
   for (size_t first = 0; first < matrices.size(); first += meshik::kPolarLanes) {
     const int count = static_cast<int>(std::min<size_t>(meshik::kPolarLanes, matrices.size() - first));
-    Eigen::Matrix3d rotation[meshik::kPolarLanes], stretch[meshik::kPolarLanes];
-    Eigen::Vector3d log[meshik::kPolarLanes];
-    meshik::polar_and_log_batch(&matrices[first], count, rotation, stretch, log);
+    constexpr int N = meshik::kPolarLanes;
+    double lanes[9][N] = {}, rotation_lanes[9][N], stretch_lanes[9][N], log_lanes[3][N];
+    for (int l = 0; l < count; ++l)
+      for (int e = 0; e < 9; ++e) lanes[e][l] = matrices[first + l](e / 3, e % 3);
+    meshik::polar_and_log_batch(lanes, count, rotation_lanes, stretch_lanes, log_lanes);
+    Eigen::Matrix3d rotation[N], stretch[N];
+    Eigen::Vector3d log[N];
+    for (int l = 0; l < count; ++l) {
+      for (int e = 0; e < 9; ++e) {
+        rotation[l](e / 3, e % 3) = rotation_lanes[e][l];
+        stretch[l](e / 3, e % 3) = stretch_lanes[e][l];
+      }
+      log[l] = Eigen::Vector3d(log_lanes[0][l], log_lanes[1][l], log_lanes[2][l]);
+    }
     for (int l = 0; l < count; ++l) {
       const Eigen::Matrix3d& t = matrices[first + l];
       const meshik::PolarDecomposition svd = polar_decomposition(t);
