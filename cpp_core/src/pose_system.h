@@ -21,9 +21,10 @@ namespace meshik {
 class PoseSystem {
  public:
   // set: the validated example set; handles: validated distinct vertex indices (every component
-  // of the triangles holds one). Assembles K', analyses and factors it.
+  // of the triangles holds one); team: threads of the factorization (a thread_count; the same
+  // bits for any team). Assembles K' and factors it on the set's analysis.
   PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-             const ProgressCallback& progress = {});
+             const ProgressCallback& progress = {}, int team = 1);
 
   // #V: the row of each free vertex (an unknown of K'), or -1 for a handle or a vertex used by
   // no triangle.

@@ -10,11 +10,14 @@
 //                       structures (symbolic.cpp).
 //   numeric.cpp         the clique nodes eliminated directly on the values (simplicial_prefix.cpp),
 //                       then a multifrontal supernodal factorization with register-tiled dense
-//                       kernels (dense_kernels.cpp, vectorized with simd.h).
+//                       kernels (dense_kernels.cpp, vectorized with simd.h), independent subtrees
+//                       of the elimination tree on several threads (subtree_schedule.cpp).
 //   triangular_solve.cpp  forward and back substitution over the supernodes, all right-hand
 //                       sides of a pass together (16 per chunk), the factor read once per chunk.
-// Single-threaded; one object is not safe for concurrent analyze/factorize, but concurrent
-// solve() calls on a factored object are (each thread has its own work buffer).
+// factorize() and the in-order solves take a thread count (serial inside an OpenMP parallel
+// region, so callers on several threads never oversubscribe the cores); one object is not safe for
+// concurrent analyze/factorize, but concurrent solve() calls on a factored object are (each thread
+// has its own work buffer).
 #pragma once
 
 #include <memory>
@@ -59,7 +62,9 @@ class SparseCholesky {
   // Numeric factorization of `a`, which must have the pattern given to analyze() (else
   // std::invalid_argument). Throws NotPositiveDefinite naming the (original) column whose pivot
   // is not positive; solve() is then unavailable until a factorization succeeds.
-  void factorize(const CscMatrix& a);
+  // threads: 1 = serial, 0 = all cores, n = up to n threads, over independent subtrees of the
+  // elimination tree; the factor (and any error) is the same bits for any count.
+  void factorize(const CscMatrix& a, int threads = 1);
   // analyze() then factorize().
   void compute(const CscMatrix& a);
 

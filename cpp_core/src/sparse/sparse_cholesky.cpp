@@ -21,7 +21,8 @@ using namespace sparse;
 namespace {
 
 // An analysed pattern (kept to check that factorize() gets the same one), its analysis and the
-// backward solve's subtrees, shared by every SparseCholesky analysed like the one that made it.
+// subtrees of the factorization and the backward solve, shared by every SparseCholesky analysed
+// like the one that made it.
 struct AnalyzedPattern {
   std::vector<int> col_start, row_index;
   Analysis analysis;
@@ -82,7 +83,7 @@ void SparseCholesky::share_analysis(const SparseCholesky& other) {
   impl_->reset(other.impl_->pattern);
 }
 
-void SparseCholesky::factorize(const CscMatrix& a) {
+void SparseCholesky::factorize(const CscMatrix& a, int threads) {
   Impl& s = *impl_;
   if (!s.pattern) throw std::logic_error("SparseCholesky::factorize: no analyze() or share_analysis() first");
   if (a.rows != a.cols || a.col_start != s.pattern->col_start || a.row_index != s.pattern->row_index)
@@ -92,7 +93,7 @@ void SparseCholesky::factorize(const CscMatrix& a) {
     throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
                                 " entries, expected " + std::to_string(a.row_index.size()));
   s.factorized = false;
-  factorize_numeric(s.analysis(), a.values, s.factor);
+  factorize_numeric(s.analysis(), a.values, s.factor, &s.pattern->schedule, thread_count(threads));
   s.factorized = true;
 }
 

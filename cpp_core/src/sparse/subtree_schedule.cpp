@@ -31,6 +31,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
   for (int s = 0; s < count; ++s)
     if (size[s] != s - first[s] + 1) {  // not a postorder: everything on top, in one pass
       for (int t = 0; t < count; ++t) schedule.top.push_back(t);
+      schedule.top_stack = f.stack_size;
       return schedule;
     }
   double total = 0.0;
@@ -73,10 +74,17 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
   split(split(std::min(count, kMaxSplits), schedule.top, subtrees), schedule.top, subtrees);
   std::sort(schedule.top.begin(), schedule.top.end());
   std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); });
-  for (int s : subtrees) {
+  const int groups = static_cast<int>(subtrees.size());
+  std::vector<int> group(count, groups);  // the top is the last group
+  for (int t = 0; t < groups; ++t) {
+    const int s = subtrees[t];
     schedule.first.push_back(first[s]);
     schedule.root.push_back(s);
+    std::fill(group.begin() + first[s], group.begin() + s + 1, t);
   }
+  schedule.stack = peak_stacks(f, group, groups + 1);
+  schedule.top_stack = schedule.stack.back();
+  schedule.stack.pop_back();
   return schedule;
 }
 

@@ -1,8 +1,10 @@
 // Independent subtrees of the supernodal elimination tree, for passes that run them on several
-// threads: the backward solve handles the top of the tree (the ancestors of every subtree) first,
-// then each subtree on its own, and the result is the same bits in any order of the subtrees.
+// threads: the numeric factorization handles each subtree on its own, then the top of the tree
+// (the ancestors of every subtree); the backward solve the top first, then the subtrees. The
+// result is the same bits in any order of the subtrees.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "sparse/symbolic.h"
@@ -16,6 +18,11 @@ struct SubtreeSchedule {
   // consecutively, its root last), largest work first.
   std::vector<int> first;
   std::vector<int> root;
+  // Per subtree: the multifrontal update stack (doubles) its factorization needs from empty, its
+  // root's update matrix included.
+  std::vector<size_t> stack;
+  // The top's stack, the subtrees' update matrices held elsewhere.
+  size_t top_stack = 0;
 };
 
 // f: a symbolic factor whose supernodes are numbered in a postorder of their tree. Splits the
