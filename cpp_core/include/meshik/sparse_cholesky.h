@@ -84,10 +84,10 @@ class SparseCholesky {
   // permutation()[k]. Only columns [0, padded_width(columns)) are overwritten (columns <= stride),
   // with L^{-1} x (forward) or L^{-T} x (backward), where A = P^T L L^T P. Since
   // B^T A^{-1} C = (L^{-1} P B)^T (L^{-1} P C), products with A^{-1} need only the forward half.
-  // threads: 1 = serial, 0 = all cores, n = up to n threads: the forward half gives each a group
-  // of whole SIMD vectors of columns (so 2 threads need more than one vector's columns), the
-  // backward half independent subtrees of the elimination tree. The result is the same bits for
-  // any count, and serial when called inside an OpenMP parallel region.
+  // threads: 1 = serial, 0 = all cores, n = up to n threads over independent subtrees of the
+  // elimination tree (the forward half then shares the top of the tree's rows by groups of whole
+  // SIMD vectors of columns). The result is the same bits for any count, and serial when called
+  // inside an OpenMP parallel region.
   // Throw std::logic_error without a successful factorize(), std::invalid_argument for a bad
   // stride or column count.
   void forward_solve_in_order(double* x, int stride, int columns, int threads = 1) const;

@@ -140,7 +140,8 @@ int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
 
 void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads));
+  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads),
+                &impl_->pattern->schedule);
 }
 
 void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns, int threads) const {

@@ -32,6 +32,8 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
     if (size[s] != s - first[s] + 1) {  // not a postorder: everything on top, in one pass
       for (int t = 0; t < count; ++t) schedule.top.push_back(t);
       schedule.top_stack = f.stack_size;
+      schedule.top_row.assign(count, 0);
+      schedule.top_pass = schedule.top;
       return schedule;
     }
   double total = 0.0;
@@ -85,6 +87,17 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
   schedule.stack = peak_stacks(f, group, groups + 1);
   schedule.top_stack = schedule.stack.back();
   schedule.stack.pop_back();
+  // A subtree's rows end at its root's last column; the rows after it are the top's.
+  schedule.top_row.assign(count, 0);
+  for (int s = 0; s < count; ++s) {
+    if (group[s] < groups) {
+      const int root = schedule.root[group[s]];
+      const int* rows = f.rows.data() + f.row_start[s];
+      const int k = f.first_column[s + 1] - f.first_column[s], r = f.row_start[s + 1] - f.row_start[s];
+      schedule.top_row[s] = static_cast<int>(std::upper_bound(rows + k, rows + r, f.first_column[root + 1] - 1) - rows);
+    }
+    if (schedule.top_row[s] < f.row_start[s + 1] - f.row_start[s]) schedule.top_pass.push_back(s);
+  }
   return schedule;
 }
 

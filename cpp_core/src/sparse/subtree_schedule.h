@@ -1,7 +1,7 @@
 // Independent subtrees of the supernodal elimination tree, for passes that run them on several
-// threads: the numeric factorization handles each subtree on its own, then the top of the tree
-// (the ancestors of every subtree); the backward solve the top first, then the subtrees. The
-// result is the same bits in any order of the subtrees.
+// threads: the numeric factorization and the forward solve handle each subtree on its own, then
+// the top of the tree (the ancestors of every subtree); the backward solve the top first, then the
+// subtrees. The result is the same bits in any order of the subtrees.
 #pragma once
 
 #include <cstddef>
@@ -23,6 +23,13 @@ struct SubtreeSchedule {
   std::vector<size_t> stack;
   // The top's stack, the subtrees' update matrices held elsewhere.
   size_t top_stack = 0;
+  // #S: per supernode, the first of its rows (an index among its r rows) that lies in the top:
+  // 0 for a top supernode, at least k for a subtree's. The forward solve updates the rows before
+  // it in the subtree's pass, and the rest in the top's.
+  std::vector<int> top_row;
+  // The supernodes with rows in the top (the top's, and the subtrees' that update top rows),
+  // increasing: the forward solve's top pass.
+  std::vector<int> top_pass;
 };
 
 // f: a symbolic factor whose supernodes are numbered in a postorder of their tree. Splits the

@@ -1,6 +1,7 @@
 #include "sparse/triangular_solve.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "sparse/simd.h"
 
@@ -165,28 +166,41 @@ void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, cons
   }
 }
 
+// x_{rows[i]} -= L(i, :) y_s for the rows i in [begin, end) below the diagonal block (begin >= k):
+// in groups of 2 kGroup rows (each x_s row loaded once per group), then kGroup, then the rest.
+template <int V>
+void update_row_range(const double* block, int k, int r, int begin, int end, const int* rows, const double* xs,
+                      double* x, long stride) {
+  int i = begin;
+  for (; i + 2 * kGroup <= end; i += 2 * kGroup) update_rows_below<V, 2 * kGroup>(block, k, r, i, rows, xs, x, stride);
+  if (i + kGroup <= end) {
+    update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
+    i += kGroup;
+  }
+  update_last_rows_below<V>(end - i, block, k, r, i, rows, xs, x, stride);
+}
+
+// Forward pass over the rows [begin, end) of supernode s (indices among its r rows) for one
+// chunk: with begin = 0 its diagonal block first (its own k rows), then the updates of the rows
+// below in the range.
+template <int V>
+void forward_supernode(const SymbolicFactor& f, const double* values, int s, int begin, int end, double* x,
+                       long stride) {
+  const int k = f.first_column[s + 1] - f.first_column[s];
+  const int r = f.row_start[s + 1] - f.row_start[s];
+  const double* block = values + f.value_start[s];
+  double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
+  if (begin == 0) diagonal_forward<V>(block, k, r, xs, stride);
+  update_row_range<V>(block, k, r, std::max(begin, k), end, f.rows.data() + f.row_start[s], xs, x, stride);
+}
+
 // Forward pass (prefix, then supernodes) for one chunk.
 template <int V>
 void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
   prefix_forward<V>(analysis.prefix, factor, x, stride);
   const SymbolicFactor& f = analysis.symbolic;
-  const double* values = factor.supernodal.data();
-  for (int s = 0; s < f.num_supernodes(); ++s) {
-    const int k = f.first_column[s + 1] - f.first_column[s];
-    const int r = f.row_start[s + 1] - f.row_start[s];
-    const int* rows = f.rows.data() + f.row_start[s];
-    const double* block = values + f.value_start[s];
-    double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
-    diagonal_forward<V>(block, k, r, xs, stride);
-    int i = k;  // rows below in groups of 2 kGroup (each x_s row loaded once per group), then kGroup
-    for (; i + 2 * kGroup <= r; i += 2 * kGroup)
-      update_rows_below<V, 2 * kGroup>(block, k, r, i, rows, xs, x, stride);
-    if (i + kGroup <= r) {
-      update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
-      i += kGroup;
-    }
-    update_last_rows_below<V>(r - i, block, k, r, i, rows, xs, x, stride);
-  }
+  for (int s = 0; s < f.num_supernodes(); ++s)
+    forward_supernode<V>(f, factor.supernodal.data(), s, 0, f.row_start[s + 1] - f.row_start[s], x, stride);
 }
 
 // Backward pass over supernode s for one chunk: its rows of x from the rows below (done before).
@@ -274,11 +288,56 @@ void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach
   }
 }
 
+// Calls work(std::integral_constant<int, vectors>()) (1 <= vectors <= V).
+template <int V, class Work>
+void with_vectors(int vectors, Work&& work) {
+  if (vectors == V) work(std::integral_constant<int, V>());
+  else if constexpr (V > 1) with_vectors<V - 1>(vectors, work);
+}
+
+// The forward pass on `team` threads over the schedule's subtrees, chunk by chunk of columns: the
+// prefix, then each subtree's own rows on one thread (all the chunk's columns), then the top pass
+// with the chunk's vectors in groups, one thread per group. Every row of x sees the same
+// operations in the same order as in forward_chunk (a top row's updates in increasing supernode
+// order, in the top pass), so the result is the same bits.
+void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const SubtreeSchedule& schedule, double* x,
+                         int stride, int columns, int team) {
+  const SymbolicFactor& f = a.symbolic;
+  const double* values = factor.supernodal.data();
+  const int vectors = round_up_to_lanes(columns) / kLanes;
+  const int subtrees = static_cast<int>(schedule.root.size());
+  for (int first = 0; first < vectors; first += kMaxVectors) {
+    const int chunk = std::min(kMaxVectors, vectors - first);
+    double* xc = x + first * kLanes;
+    with_vectors<kMaxVectors>(chunk, [&](auto width) {
+      constexpr int V = decltype(width)::value;
+      prefix_forward<V>(a.prefix, factor, xc, stride);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+      for (int t = 0; t < subtrees; ++t)
+        for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
+          forward_supernode<V>(f, values, s, 0, schedule.top_row[s], xc, stride);
+    });
+    const int per_group = (chunk + team - 1) / team;
+    const int groups = (chunk + per_group - 1) / per_group;
+#pragma omp parallel for schedule(static) num_threads(groups) if (groups > 1)
+    for (int g = 0; g < groups; ++g)
+      with_vectors<kMaxVectors>(std::min(per_group, chunk - g * per_group), [&](auto width) {
+        constexpr int V = decltype(width)::value;
+        for (int s : schedule.top_pass)
+          forward_supernode<V>(f, values, s, schedule.top_row[s], f.row_start[s + 1] - f.row_start[s],
+                               xc + g * per_group * kLanes, stride);
+      });
+  }
+}
+
 }  // namespace
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                   int columns, int team) {
-  by_chunks<Forward>(analysis, factor, nullptr, nullptr, x, stride, columns, team);
+                   int columns, int team, const SubtreeSchedule* schedule) {
+  if (schedule != nullptr && team > 1 && schedule->root.size() >= 2)
+    forward_by_subtrees(analysis, factor, *schedule, x, stride, columns, team);
+  else
+    by_chunks<Forward>(analysis, factor, nullptr, nullptr, x, stride, columns, team);
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
