@@ -279,12 +279,18 @@ void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach
   const int column_team = schedule == nullptr ? std::max(team, 1) : 1;
   const int per_group = std::max(1, std::min(kMaxVectors, (vectors + column_team - 1) / column_team));
   const int groups = (vectors + per_group - 1) / per_group;
-#pragma omp parallel for schedule(static) num_threads(std::min(column_team, std::max(groups, 1))) \
-    if (column_team > 1 && groups > 1)
-  for (int g = 0; g < groups; ++g) {
+  auto run_group = [&](int g) {
     const int first = g * per_group;
     Pass<kMaxVectors>::dispatch(std::min(per_group, vectors - first), a, factor, reach, schedule,
                                 schedule == nullptr ? 1 : team, x + first * kLanes, stride);
+  };
+  if (column_team > 1 && groups > 1) {
+#pragma omp parallel for schedule(static) num_threads(std::min(column_team, groups))
+    for (int g = 0; g < groups; ++g) run_group(g);
+  } else {
+    // No region around the schedule's passes: theirs must be the outermost, whose threads the
+    // runtime keeps (a team nested in an inactive region is started afresh on every call).
+    for (int g = 0; g < groups; ++g) run_group(g);
   }
 }
 
