@@ -302,10 +302,10 @@ void with_vectors(int vectors, Work&& work) {
 }
 
 // The forward pass on `team` threads over the schedule's subtrees, chunk by chunk of columns: the
-// prefix, then each subtree's own rows on one thread (all the chunk's columns), then the top pass
-// with the chunk's vectors in groups, one thread per group. Every row of x sees the same
-// operations in the same order as in forward_chunk (a top row's updates in increasing supernode
-// order, in the top pass), so the result is the same bits.
+// prefix, then in one parallel region each subtree's own rows on one thread (all the chunk's
+// columns) and the top pass with the chunk's vectors in groups, one thread per group. Every row of
+// x sees the same operations in the same order as in forward_chunk (a top row's updates in
+// increasing supernode order, in the top pass), so the result is the same bits.
 void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const SubtreeSchedule& schedule, double* x,
                          int stride, int columns, int team) {
   const SymbolicFactor& f = a.symbolic;
@@ -314,25 +314,27 @@ void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const Su
   const int subtrees = static_cast<int>(schedule.root.size());
   for (int first = 0; first < vectors; first += kMaxVectors) {
     const int chunk = std::min(kMaxVectors, vectors - first);
-    double* xc = x + first * kLanes;
-    with_vectors<kMaxVectors>(chunk, [&](auto width) {
-      constexpr int V = decltype(width)::value;
-      prefix_forward<V>(a.prefix, factor, xc, stride);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
-      for (int t = 0; t < subtrees; ++t)
-        for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
-          forward_supernode<V>(f, values, s, 0, schedule.top_row[s], xc, stride);
-    });
     const int per_group = (chunk + team - 1) / team;
     const int groups = (chunk + per_group - 1) / per_group;
-#pragma omp parallel for schedule(static) num_threads(groups) if (groups > 1)
-    for (int g = 0; g < groups; ++g)
-      with_vectors<kMaxVectors>(std::min(per_group, chunk - g * per_group), [&](auto width) {
-        constexpr int V = decltype(width)::value;
-        for (int s : schedule.top_pass)
-          forward_supernode<V>(f, values, s, schedule.top_row[s], f.row_start[s + 1] - f.row_start[s],
-                               xc + g * per_group * kLanes, stride);
-      });
+    double* xc = x + first * kLanes;
+    with_vectors<kMaxVectors>(chunk, [&](auto width) { prefix_forward<decltype(width)::value>(a.prefix, factor, xc, stride); });
+#pragma omp parallel num_threads(team)
+    {
+      with_vectors<kMaxVectors>(chunk, [&](auto width) {
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < subtrees; ++t)
+          for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
+            forward_supernode<decltype(width)::value>(f, values, s, 0, schedule.top_row[s], xc, stride);
+      });  // the loop's barrier: every subtree done before the top pass
+#pragma omp for schedule(static)
+      for (int g = 0; g < groups; ++g)
+        with_vectors<kMaxVectors>(std::min(per_group, chunk - g * per_group), [&](auto width) {
+          for (int s : schedule.top_pass)
+            forward_supernode<decltype(width)::value>(f, values, s, schedule.top_row[s],
+                                                      f.row_start[s + 1] - f.row_start[s], xc + g * per_group * kLanes,
+                                                      stride);
+        });
+    }
   }
 }
 
