@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "meshik/sparse_cholesky.h"
@@ -61,7 +62,8 @@ struct Workspace {
   std::vector<int> relative;            // the children's update rows as indices in the parent
   std::vector<ChildUpdate> children;    // the current supernode's children
   std::vector<int> first_update_column; // per child: its first column past the parent's pivots
-  std::vector<double> stack;            // update matrices waiting for their parents
+  std::unique_ptr<double[]> stack;      // update matrices waiting for their parents (each written
+                                        // before it is read, so never zeroed)
   size_t top = 0;                       // end of the stack's used part
 
   // Sizes the arrays for factor f with a stack of `stack_size` doubles; relative_size: the most
@@ -69,7 +71,7 @@ struct Workspace {
   void size_for(const SymbolicFactor& f, size_t stack_size, int relative_size) {
     position.resize(f.n);
     relative.resize(relative_size);
-    stack.resize(stack_size);
+    stack.reset(new double[stack_size]);
     top = 0;
   }
 };
@@ -90,7 +92,7 @@ struct Multifrontal {
       : f(factor), lower(matrix), lower_values(matrix_values), values(factor_values), spaces(workspaces),
         owner(factor.num_supernodes()), stack_offset(factor.num_supernodes()) {}
   // The update matrix of supernode s (after it was pushed).
-  const double* update_of(int s) const { return spaces[owner[s]].stack.data() + stack_offset[s]; }
+  const double* update_of(int s) const { return spaces[owner[s]].stack.get() + stack_offset[s]; }
 };
 
 // Supernode s of the factor: k columns from `first`, r rows, m = r - k below its diagonal
@@ -150,7 +152,7 @@ void assemble_block(const Multifrontal& mf, int s, const Supernode& node, Worksp
 void push_update(Multifrontal& mf, int s, const Supernode& node, int me) {
   const SymbolicFactor& f = mf.f;
   Workspace& w = mf.spaces[me];
-  double* u = w.stack.data() + w.top;
+  double* u = w.stack.get() + w.top;
   if (node.m > 0) negative_lower_product(node.block + node.k, node.r, node.m, node.k, u);
   for (size_t c = 0; c < w.children.size(); ++c)
     add_to_update(w.children[c], w.first_update_column[c], node.k, u, node.m);
@@ -161,7 +163,7 @@ void push_update(Multifrontal& mf, int s, const Supernode& node, int me) {
       break;
     }
   const size_t size = node.m > 0 ? packed_size(node.m) : 0;
-  if (size > 0 && base != w.top) std::memmove(w.stack.data() + base, u, size * sizeof(double));
+  if (size > 0 && base != w.top) std::memmove(w.stack.get() + base, u, size * sizeof(double));
   mf.owner[s] = me;
   mf.stack_offset[s] = base;
   w.top = base + size;
@@ -193,11 +195,12 @@ int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int
     roots += packed_size(f.row_start[root + 1] - f.row_start[root] - k);
     largest = std::max(largest, schedule.stack[t]);
   }
+  for (int me = 0; me < team; ++me) mf.spaces[me].size_for(f, roots + largest, relative_size);
+  mf.spaces[team].size_for(f, schedule.top_stack, relative_size);
   std::vector<int> failed_supernode(subtrees, -1), failed_column(subtrees, -1);
 #pragma omp parallel num_threads(team)
   {
     const int me = thread_index();
-    mf.spaces[me].size_for(f, roots + largest, relative_size);
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < subtrees; ++t) {
       const size_t start = mf.spaces[me].top;
@@ -220,7 +223,6 @@ int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int
       first_failure = failed_supernode[t];
       column = failed_column[t];
     }
-  mf.spaces[team].size_for(f, schedule.top_stack, relative_size);
   for (int s : schedule.top) {
     if (s > first_failure) break;
     const int top_column = factor_supernode(mf, s, team);
