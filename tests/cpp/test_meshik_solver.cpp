@@ -140,7 +140,7 @@ TEST_P(TubeSolver, AnyThreadCountGivesTheSameBits) {
   const ExampleMeshes meshes = meshik_test::make_tube_examples(121, 40);
   const auto set = std::make_shared<ExampleSet>(meshes.view(), meshes.example_pointers());
   const auto analysis = meshik::sparse::analyze_pattern(set->impl().system_lower);
-  ASSERT_GE(meshik::sparse::subtree_schedule(analysis.symbolic).root.size(), 2u);
+  ASSERT_GE(meshik::sparse::subtree_schedule(analysis.symbolic, 2).root.size(), 2u);
   const std::vector<int> handles = meshik_test::farthest_point_handles(meshes.rest, 8);
   const std::vector<double> targets = unreachable_targets(meshes, handles);
   std::vector<SolveResult> results;  // from the linear space's optimum, then from the rest pose

@@ -56,16 +56,19 @@ TEST(SparseSubtreeSchedule, SplitsAMeshTreeIntoIndependentSubtrees) {
   const meshik::CscMatrix a =
       meshik_bench::deformation_normal_matrix(sphere, meshik_bench::spread_handles(sphere.num_vertices(), 12), false);
   const auto analysis = meshik::sparse::analyze_pattern(a);
-  const SubtreeSchedule schedule = meshik::sparse::subtree_schedule(analysis.symbolic);
+  const SubtreeSchedule schedule = meshik::sparse::subtree_schedule(analysis.symbolic, 4);
   expect_valid_split(analysis.symbolic, schedule);
   EXPECT_GE(schedule.root.size(), 4u);
+  const SubtreeSchedule for_two = meshik::sparse::subtree_schedule(analysis.symbolic, 2);
+  expect_valid_split(analysis.symbolic, for_two);
+  EXPECT_GE(for_two.root.size(), 2u);
 }
 
 TEST(SparseSubtreeSchedule, SmallAndDenseTreesAreValidToo) {
   for (const meshik::CscMatrix& a : {meshik_test::grid_laplacian(31, 27, 0.1),
                                      meshik_test::lower_from_dense(meshik_test::random_spd(40, 0.1, 7))}) {
     const auto analysis = meshik::sparse::analyze_pattern(a);
-    expect_valid_split(analysis.symbolic, meshik::sparse::subtree_schedule(analysis.symbolic));
+    expect_valid_split(analysis.symbolic, meshik::sparse::subtree_schedule(analysis.symbolic, 4));
   }
 }
 

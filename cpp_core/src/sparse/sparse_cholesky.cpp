@@ -1,6 +1,7 @@
 // SparseCholesky: ties the analysis, the numeric factorization and the solves together.
 #include "meshik/sparse_cholesky.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -72,7 +73,8 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   check_lower_input(a);
   auto analyzed = std::make_shared<AnalyzedPattern>();
   analyzed->analysis = analyze_pattern(a);
-  analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic);
+  // Balanced for the cores (at least 2, also when analysed inside a parallel region).
+  analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic, std::max(2, thread_count(0)));
   analyzed->col_start = a.col_start;
   analyzed->row_index = a.row_index;
   impl_->reset(std::move(analyzed));

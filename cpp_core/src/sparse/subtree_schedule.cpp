@@ -7,12 +7,11 @@ namespace meshik::sparse {
 
 namespace {
 
-constexpr int kNominalThreads = 4;  // the team the split is balanced for (not the actual one)
 constexpr int kMaxSplits = 512;     // supernodes taken apart at most
 
 }  // namespace
 
-SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
+SubtreeSchedule subtree_schedule(const SymbolicFactor& f, int threads) {
   const int count = f.num_supernodes();
   // Work and first (lowest) supernode of each subtree; children precede their parent.
   std::vector<double> own(count), work(count);
@@ -45,7 +44,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
     }
   // Takes the largest subtree apart `splits` times (or until it is a leaf), leaving the subtrees
   // in `subtrees` and the taken roots in `top`. Returns the number of splits (at most `splits`)
-  // after which the estimated time on kNominalThreads was least: the top, then the subtrees (at
+  // after which the estimated time on `threads` was least: the top, then the subtrees (at
   // best the rest shared evenly, at worst the largest alone).
   auto split = [&](int splits, std::vector<int>& top, std::vector<int>& subtrees) {
     subtrees = roots;
@@ -64,7 +63,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
       double largest_work = 0.0;
       for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) subtrees.push_back(f.children[c]);
       for (int t : subtrees) largest_work = std::max(largest_work, work[t]);
-      const double time = top_work + std::max(largest_work, (total - top_work) / kNominalThreads);
+      const double time = top_work + std::max(largest_work, (total - top_work) / threads);
       if (time < best_time) {
         best_time = time;
         best = step;

@@ -35,8 +35,9 @@ struct SubtreeSchedule {
 // f: a symbolic factor whose supernodes are numbered in a postorder of their tree. Splits the
 // tree from its roots down, taking the subtree of most work (sum of its supernodes' r k) apart into
 // its root (to the top) and its children's subtrees, as many times (at most 512) as minimises the
-// estimated time on 4 threads. Depends only on f, never on the team that runs it; a tree not in
-// postorder is all top.
-SubtreeSchedule subtree_schedule(const SymbolicFactor& f);
+// estimated time on `threads` (>= 2: the team it is balanced for, e.g. the machine's cores). The
+// passes' results never depend on it (nor on the team that runs them), only their speed; a tree
+// not in postorder is all top.
+SubtreeSchedule subtree_schedule(const SymbolicFactor& f, int threads);
 
 }  // namespace meshik::sparse
