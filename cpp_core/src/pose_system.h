@@ -53,7 +53,8 @@ class PoseSystem {
   // The in-place halves of the solve with the factored system (rows in the factor's order):
   // x is num_rows() rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
   // whole vectors) of every row are overwritten with L^{-1} x (forward) or L^{-T} x (backward).
-  // team: threads over groups of columns (the same bits for any team).
+  // team: threads over subtrees of the elimination tree and groups of columns (the same bits for
+  // any team).
   static int padded_width(int nrhs) { return SparseCholesky::padded_width(nrhs); }
   void forward_solve(double* x, int stride, int columns, int team = 1) const {
     if (num_rows_ > 0) factor_.forward_solve_in_order(x, stride, columns, team);
