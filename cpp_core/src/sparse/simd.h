@@ -20,6 +20,31 @@ constexpr int kLanes = 2;
 
 typedef double Vec __attribute__((vector_size(kLanes * sizeof(double))));
 
+// Half a Vec, for passes over at most kHalfLanes columns (used where kLanes >= 4).
+constexpr int kHalfLanes = kLanes / 2;
+typedef double HalfVec __attribute__((vector_size(kHalfLanes * sizeof(double))));
+
+// v - s x, fused where the target has FMA: explicitly, since the compiler may contract the
+// written expression in some inlined copies of a pass and not in others (different bits).
+inline Vec subtract_product(Vec v, Vec s, Vec x) {
+#if defined(__FMA__) && defined(__AVX512F__)
+  return _mm512_fnmadd_pd(s, x, v);
+#elif defined(__FMA__) && defined(__AVX__)
+  return _mm256_fnmadd_pd(s, x, v);
+#else
+  return v - s * x;
+#endif
+}
+inline HalfVec subtract_product(HalfVec v, HalfVec s, HalfVec x) {
+#if defined(__FMA__) && defined(__AVX512F__)
+  return _mm256_fnmadd_pd(s, x, v);
+#elif defined(__FMA__) && defined(__AVX__)
+  return _mm_fnmadd_pd(s, x, v);
+#else
+  return v - s * x;
+#endif
+}
+
 // kLanes doubles from p (no alignment needed).
 inline Vec load(const double* p) {
   Vec v;
