@@ -21,12 +21,15 @@ struct Pack {
   using Type = T;
   static constexpr int kCount = V;
   static constexpr int kWidth = sizeof(T) / sizeof(double);
+  // kWidth doubles from p (no alignment needed).
   static T load(const double* p) {
     T v;
     std::memcpy(&v, p, sizeof v);
     return v;
   }
+  // Writes v's kWidth doubles to p (no alignment needed).
   static void store(double* p, T v) { std::memcpy(p, &v, sizeof v); }
+  // All lanes equal to a.
   static T broadcast(double a) {
     if constexpr (std::is_same_v<T, Vec>) return sparse::broadcast(a);
     else return a - T{};  // exact: a - 0 is a, signed zeros included
