@@ -81,8 +81,9 @@ class SparseCholesky {
   // The two halves of solve() for callers that keep their right-hand sides in the factor's row
   // order, so no permuted copy is made: x is n rows of `stride` doubles (stride = padded_width(m)
   // for some m; rows starting on 64-byte boundaries are fastest), row k holding unknown
-  // permutation()[k]. Only columns [0, padded_width(columns)) are overwritten (columns <= stride),
-  // with L^{-1} x (forward) or L^{-T} x (backward), where A = P^T L L^T P. Since
+  // permutation()[k]. Columns [0, columns) (columns <= stride) are overwritten with L^{-1} x
+  // (forward) or L^{-T} x (backward), where A = P^T L L^T P; those from padded_width(columns) on
+  // are untouched, and the padding columns between are either solved too or untouched. Since
   // B^T A^{-1} C = (L^{-1} P B)^T (L^{-1} P C), products with A^{-1} need only the forward half.
   // threads: 1 = serial, 0 = all cores, n = up to n threads over independent subtrees of the
   // elimination tree (the forward half then shares the top of the tree's rows by groups of whole
