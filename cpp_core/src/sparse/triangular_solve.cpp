@@ -1,7 +1,6 @@
 #include "sparse/triangular_solve.h"
 
 #include <algorithm>
-#include <cstring>
 #include <type_traits>
 
 #include "sparse/simd.h"
@@ -21,14 +20,6 @@ struct Pack {
   using Type = T;
   static constexpr int kCount = V;
   static constexpr int kWidth = sizeof(T) / sizeof(double);
-  // kWidth doubles from p (no alignment needed).
-  static T load(const double* p) {
-    T v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
-  // Writes v's kWidth doubles to p (no alignment needed).
-  static void store(double* p, T v) { std::memcpy(p, &v, sizeof v); }
   // All lanes equal to a.
   static T broadcast(double a) {
     if constexpr (std::is_same_v<T, Vec>) return sparse::broadcast(a);
@@ -49,11 +40,11 @@ struct Rows {
   typename P::Type v[B][V];
   void load_from(double* const* p) {
     for (int b = 0; b < B; ++b)
-      for (int c = 0; c < V; ++c) v[b][c] = P::load(p[b] + c * P::kWidth);
+      for (int c = 0; c < V; ++c) v[b][c] = load<typename P::Type>(p[b] + c * P::kWidth);
   }
   void store_to(double* const* p) const {
     for (int b = 0; b < B; ++b)
-      for (int c = 0; c < V; ++c) P::store(p[b] + c * P::kWidth, v[b][c]);
+      for (int c = 0; c < V; ++c) store(p[b] + c * P::kWidth, v[b][c]);
   }
   // every row *= a
   void scale(double a) {
@@ -64,7 +55,7 @@ struct Rows {
   // row b -= a[b] * x for every b
   void subtract_scaled(const double* a, const double* x) {
     typename P::Type xv[V];
-    for (int c = 0; c < V; ++c) xv[c] = P::load(x + c * P::kWidth);
+    for (int c = 0; c < V; ++c) xv[c] = load<typename P::Type>(x + c * P::kWidth);
     for (int b = 0; b < B; ++b) {
       const typename P::Type s = P::broadcast(a[b]);
       for (int c = 0; c < V; ++c) v[b][c] = subtract_product(v[b][c], s, xv[c]);
