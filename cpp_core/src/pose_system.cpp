@@ -9,7 +9,7 @@
 namespace meshik {
 
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-                       const ProgressCallback& progress)
+                       const ProgressCallback& progress, int team)
     : handles_(handles) {
   const int n = set.num_vertices;
   const CscMatrix& k = set.normal_matrix;
@@ -55,7 +55,7 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   try {
     if (num_rows_ > 0) {
       factor_.share_analysis(set.system_analysis);
-      factor_.factorize(lower);
+      factor_.factorize(lower, team);
     }
   } catch (const NotPositiveDefinite& e) {
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +

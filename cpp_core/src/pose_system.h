@@ -21,9 +21,10 @@ namespace meshik {
 class PoseSystem {
  public:
   // set: the validated example set; handles: validated distinct vertex indices (every component
-  // of the triangles holds one). Assembles K', analyses and factors it.
+  // of the triangles holds one); team: threads of the factorization (a thread_count; the same
+  // bits for any team). Assembles K' and factors it on the set's analysis.
   PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-             const ProgressCallback& progress = {});
+             const ProgressCallback& progress = {}, int team = 1);
 
   // #V: the row of each free vertex (an unknown of K'), or -1 for a handle or a vertex used by
   // no triangle.
@@ -52,7 +53,8 @@ class PoseSystem {
   // The in-place halves of the solve with the factored system (rows in the factor's order):
   // x is num_rows() rows of `stride` = padded_width(m) doubles; the first `columns` (rounded up to
   // whole vectors) of every row are overwritten with L^{-1} x (forward) or L^{-T} x (backward).
-  // team: threads over groups of columns (the same bits for any team).
+  // team: threads over subtrees of the elimination tree and groups of columns (the same bits for
+  // any team).
   static int padded_width(int nrhs) { return SparseCholesky::padded_width(nrhs); }
   void forward_solve(double* x, int stride, int columns, int team = 1) const {
     if (num_rows_ > 0) factor_.forward_solve_in_order(x, stride, columns, team);

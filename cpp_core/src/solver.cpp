@@ -67,8 +67,9 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->examples = std::move(examples);
   impl_->handles = handles;
   impl_->options = options;
-  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress);
-  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, thread_count(options.threads));
+  const int team = thread_count(options.threads);
+  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
+  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, team);
 }
 
 Solver::~Solver() = default;

@@ -9,4 +9,8 @@ namespace meshik {
 // a parallel loop of the caller never oversubscribes the cores).
 int thread_count(int requested);
 
+// The calling thread's number in its OpenMP team: 0 .. team size - 1 (0 outside a parallel region
+// or without OpenMP).
+int thread_index();
+
 }  // namespace meshik

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <memory>
 
+#include "example_set_impl.h"
+#include "sparse/analysis.h"
+#include "sparse/subtree_schedule.h"
 #include "test_meshik_support.h"
 
 namespace {
@@ -132,9 +135,12 @@ TEST_P(TubeSolver, WarmStartFromTheSolutionStopsAtOnceWithTheSamePose) {
 }
 
 TEST_P(TubeSolver, AnyThreadCountGivesTheSameBits) {
-  // A tube of 9,600 triangles: the solve's passes run over 32 chunks, sharing rows at their seams.
+  // A tube of 9,600 triangles: the solve's passes run over 32 chunks, sharing rows at their seams;
+  // its factorization and its solves over several subtrees of the elimination tree.
   const ExampleMeshes meshes = meshik_test::make_tube_examples(121, 40);
   const auto set = std::make_shared<ExampleSet>(meshes.view(), meshes.example_pointers());
+  const auto analysis = meshik::sparse::analyze_pattern(set->impl().system_lower);
+  ASSERT_GE(meshik::sparse::subtree_schedule(analysis.symbolic, 2).root.size(), 2u);
   const std::vector<int> handles = meshik_test::farthest_point_handles(meshes.rest, 8);
   const std::vector<double> targets = unreachable_targets(meshes, handles);
   std::vector<SolveResult> results;  // from the linear space's optimum, then from the rest pose

@@ -198,6 +198,48 @@ TEST(SparseCholeskyMesh, InOrderSolvesGiveTheSameBitsOnAnyNumberOfThreads) {
   }
 }
 
+TEST(SparseCholeskyMesh, FactorizationGivesTheSameBitsOnAnyNumberOfThreads) {
+  // A mesh's factor, its elimination tree split into several subtrees (SparseSubtreeSchedule's
+  // test checks that split): each runs on a thread, then the top. The serial solves of the
+  // factors then give the same bits, and so do the errors of an indefinite matrix.
+  const auto sphere = meshik_bench::geodesic_sphere(16);
+  const CscMatrix a =
+      meshik_bench::deformation_normal_matrix(sphere, meshik_bench::spread_handles(sphere.num_vertices(), 12), false);
+  const int n = a.rows, nrhs = 15;
+  const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 45);
+  SparseCholesky serial;
+  serial.compute(a);
+  std::vector<double> serial_x = b;
+  serial.solve(serial_x.data(), nrhs);
+  EXPECT_LT(relative_residual(a, serial_x, b, nrhs), 1e-10);
+  // Negative pivots in several places (factor order: the subtrees' and the top's columns), for
+  // the first in the serial order to be named.
+  CscMatrix indefinite = a;
+  for (int column : {n / 7, n / 3, n / 2, n - 5})
+    indefinite.values[indefinite.col_start[column]] = -1.0;  // the diagonal is a column's first entry
+  std::string serial_error;
+  try {
+    serial.factorize(indefinite, 1);
+  } catch (const meshik::NotPositiveDefinite& e) {
+    serial_error = e.what();
+  }
+  ASSERT_FALSE(serial_error.empty());
+  for (int threads : {2, 3, 0}) {
+    SparseCholesky chol;
+    chol.share_analysis(serial);
+    chol.factorize(a, threads);
+    std::vector<double> x = b;
+    chol.solve(x.data(), nrhs);
+    EXPECT_EQ(x, serial_x) << threads << " threads";
+    try {
+      chol.factorize(indefinite, threads);
+      ADD_FAILURE() << "expected NotPositiveDefinite on " << threads << " threads";
+    } catch (const meshik::NotPositiveDefinite& e) {
+      EXPECT_EQ(std::string(e.what()), serial_error) << threads << " threads";
+    }
+  }
+}
+
 TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
   const auto horse = horse_or_empty();
   if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";

@@ -1,6 +1,6 @@
-// The backward solve's split of the supernodal tree: every supernode once, on top or in exactly
-// one subtree, each subtree closed under descendants with its ancestors all on top, and a mesh's
-// tree split into several subtrees of bounded work.
+// The split of the supernodal tree for the factorization and the backward solve: every supernode
+// once, on top or in exactly one subtree, each subtree closed under descendants with its ancestors
+// all on top, stacks of sizes within bounds, and a mesh's tree split into several subtrees.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -25,11 +25,19 @@ void expect_valid_split(const SymbolicFactor& f, const SubtreeSchedule& schedule
     owner[s] = -1;
   }
   ASSERT_EQ(schedule.first.size(), schedule.root.size());
-  for (size_t t = 0; t < schedule.root.size(); ++t)
+  ASSERT_EQ(schedule.stack.size(), schedule.root.size());
+  EXPECT_LE(schedule.top_stack, f.stack_size);
+  for (size_t t = 0; t < schedule.root.size(); ++t) {
     for (int s = schedule.first[t]; s <= schedule.root[t]; ++s) {
       ASSERT_EQ(owner[s], -2) << "supernode " << s << " twice";
       owner[s] = static_cast<int>(t);
     }
+    // A subtree's stack holds at least its root's update matrix, at most the whole tree's stack.
+    const int root = schedule.root[t];
+    const int k = f.first_column[root + 1] - f.first_column[root];
+    EXPECT_GE(schedule.stack[t], meshik::sparse::packed_size(f.row_start[root + 1] - f.row_start[root] - k));
+    EXPECT_LE(schedule.stack[t], f.stack_size);
+  }
   for (int s = 0; s < count; ++s) {
     ASSERT_NE(owner[s], -2) << "supernode " << s << " missing";
     const int p = f.parent[s];
@@ -48,16 +56,19 @@ TEST(SparseSubtreeSchedule, SplitsAMeshTreeIntoIndependentSubtrees) {
   const meshik::CscMatrix a =
       meshik_bench::deformation_normal_matrix(sphere, meshik_bench::spread_handles(sphere.num_vertices(), 12), false);
   const auto analysis = meshik::sparse::analyze_pattern(a);
-  const SubtreeSchedule schedule = meshik::sparse::subtree_schedule(analysis.symbolic);
+  const SubtreeSchedule schedule = meshik::sparse::subtree_schedule(analysis.symbolic, 4);
   expect_valid_split(analysis.symbolic, schedule);
   EXPECT_GE(schedule.root.size(), 4u);
+  const SubtreeSchedule for_two = meshik::sparse::subtree_schedule(analysis.symbolic, 2);
+  expect_valid_split(analysis.symbolic, for_two);
+  EXPECT_GE(for_two.root.size(), 2u);
 }
 
 TEST(SparseSubtreeSchedule, SmallAndDenseTreesAreValidToo) {
   for (const meshik::CscMatrix& a : {meshik_test::grid_laplacian(31, 27, 0.1),
                                      meshik_test::lower_from_dense(meshik_test::random_spd(40, 0.1, 7))}) {
     const auto analysis = meshik::sparse::analyze_pattern(a);
-    expect_valid_split(analysis.symbolic, meshik::sparse::subtree_schedule(analysis.symbolic));
+    expect_valid_split(analysis.symbolic, meshik::sparse::subtree_schedule(analysis.symbolic, 4));
   }
 }
 

@@ -10,11 +10,14 @@
 //                       structures (symbolic.cpp).
 //   numeric.cpp         the clique nodes eliminated directly on the values (simplicial_prefix.cpp),
 //                       then a multifrontal supernodal factorization with register-tiled dense
-//                       kernels (dense_kernels.cpp, vectorized with simd.h).
+//                       kernels (dense_kernels.cpp, vectorized with simd.h), independent subtrees
+//                       of the elimination tree on several threads (subtree_schedule.cpp).
 //   triangular_solve.cpp  forward and back substitution over the supernodes, all right-hand
 //                       sides of a pass together (16 per chunk), the factor read once per chunk.
-// Single-threaded; one object is not safe for concurrent analyze/factorize, but concurrent
-// solve() calls on a factored object are (each thread has its own work buffer).
+// factorize() and the in-order solves take a thread count (serial inside an OpenMP parallel
+// region, so callers on several threads never oversubscribe the cores); one object is not safe for
+// concurrent analyze/factorize, but concurrent solve() calls on a factored object are (each thread
+// has its own work buffer).
 #pragma once
 
 #include <memory>
@@ -59,7 +62,9 @@ class SparseCholesky {
   // Numeric factorization of `a`, which must have the pattern given to analyze() (else
   // std::invalid_argument). Throws NotPositiveDefinite naming the (original) column whose pivot
   // is not positive; solve() is then unavailable until a factorization succeeds.
-  void factorize(const CscMatrix& a);
+  // threads: 1 = serial, 0 = all cores, n = up to n threads, over independent subtrees of the
+  // elimination tree; the factor (and any error) is the same bits for any count.
+  void factorize(const CscMatrix& a, int threads = 1);
   // analyze() then factorize().
   void compute(const CscMatrix& a);
 
@@ -76,13 +81,14 @@ class SparseCholesky {
   // The two halves of solve() for callers that keep their right-hand sides in the factor's row
   // order, so no permuted copy is made: x is n rows of `stride` doubles (stride = padded_width(m)
   // for some m; rows starting on 64-byte boundaries are fastest), row k holding unknown
-  // permutation()[k]. Only columns [0, padded_width(columns)) are overwritten (columns <= stride),
-  // with L^{-1} x (forward) or L^{-T} x (backward), where A = P^T L L^T P. Since
+  // permutation()[k]. Columns [0, columns) (columns <= stride) are overwritten with L^{-1} x
+  // (forward) or L^{-T} x (backward), where A = P^T L L^T P; those from padded_width(columns) on
+  // are untouched, and the padding columns between are either solved too or untouched. Since
   // B^T A^{-1} C = (L^{-1} P B)^T (L^{-1} P C), products with A^{-1} need only the forward half.
-  // threads: 1 = serial, 0 = all cores, n = up to n threads: the forward half gives each a group
-  // of whole SIMD vectors of columns (so 2 threads need more than one vector's columns), the
-  // backward half independent subtrees of the elimination tree. The result is the same bits for
-  // any count, and serial when called inside an OpenMP parallel region.
+  // threads: 1 = serial, 0 = all cores, n = up to n threads over independent subtrees of the
+  // elimination tree (the forward half then shares the top of the tree's rows by groups of whole
+  // SIMD vectors of columns). The result is the same bits for any count, and serial when called
+  // inside an OpenMP parallel region.
   // Throw std::logic_error without a successful factorize(), std::invalid_argument for a bad
   // stride or column count.
   void forward_solve_in_order(double* x, int stride, int columns, int threads = 1) const;

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "meshik/sparse_cholesky.h"
 #include "sparse/dense_kernels.h"
 #include "sparse/simplicial_prefix.h"
+#include "thread_count.h"
 
 namespace meshik::sparse {
 
@@ -54,15 +56,43 @@ void add_to_update(const ChildUpdate& c, int first_q, int k, double* parent_u, i
   }
 }
 
-// Work arrays of one factorization.
+// One thread's work arrays (and the top's): its own multifrontal stack.
 struct Workspace {
   std::vector<int> position;            // n: row -> index in the current supernode's rows
   std::vector<int> relative;            // the children's update rows as indices in the parent
   std::vector<ChildUpdate> children;    // the current supernode's children
   std::vector<int> first_update_column; // per child: its first column past the parent's pivots
-  std::vector<double> stack;            // update matrices waiting for their parents
-  std::vector<size_t> stack_offset;     // #S: where each supernode's update matrix sits
+  std::unique_ptr<double[]> stack;      // update matrices waiting for their parents (each written
+                                        // before it is read, so never zeroed)
   size_t top = 0;                       // end of the stack's used part
+
+  // Sizes the arrays for factor f with a stack of `stack_size` doubles; relative_size: the most
+  // update rows of one supernode's children together.
+  void size_for(const SymbolicFactor& f, size_t stack_size, int relative_size) {
+    position.resize(f.n);
+    relative.resize(relative_size);
+    stack.reset(new double[stack_size]);
+    top = 0;
+  }
+};
+
+// One factorization: the symbolic factor, the matrix, the values being written, and where each
+// supernode's update matrix waits (its workspace and offset in that workspace's stack).
+struct Multifrontal {
+  const SymbolicFactor& f;
+  const Pattern& lower;
+  const double* lower_values;
+  std::vector<double>& values;
+  std::vector<Workspace> spaces;
+  std::vector<int> owner;           // #S: the workspace holding the supernode's update matrix
+  std::vector<size_t> stack_offset; // #S: where in that workspace's stack
+
+  Multifrontal(const SymbolicFactor& factor, const Pattern& matrix, const double* matrix_values,
+               std::vector<double>& factor_values, int workspaces)
+      : f(factor), lower(matrix), lower_values(matrix_values), values(factor_values), spaces(workspaces),
+        owner(factor.num_supernodes()), stack_offset(factor.num_supernodes()) {}
+  // The update matrix of supernode s (after it was pushed).
+  const double* update_of(int s) const { return spaces[owner[s]].stack.get() + stack_offset[s]; }
 };
 
 // Supernode s of the factor: k columns from `first`, r rows, m = r - k below its diagonal
@@ -80,13 +110,27 @@ Supernode supernode(const SymbolicFactor& f, std::vector<double>& values, int s)
   return {f.first_column[s], k, r, r - k, f.rows.data() + f.row_start[s], values.data() + f.value_start[s]};
 }
 
+// The most update rows that the children of one supernode of f have together.
+int most_child_rows(const SymbolicFactor& f) {
+  int most = 0;
+  for (int s = 0; s < f.num_supernodes(); ++s) {
+    int rows = 0;
+    for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) {
+      const int child = f.children[c];
+      rows += f.row_start[child + 1] - f.row_start[child] - (f.first_column[child + 1] - f.first_column[child]);
+    }
+    most = std::max(most, rows);
+  }
+  return most;
+}
+
 // Fills the block of supernode s with A's columns and the children's contributions to its
 // pivot columns; records the children (w.children, w.first_update_column) for push_update.
-void assemble_block(const SymbolicFactor& f, int s, const Supernode& node, const Pattern& lower,
-                    const double* lower_values, Workspace& w) {
+void assemble_block(const Multifrontal& mf, int s, const Supernode& node, Workspace& w) {
+  const SymbolicFactor& f = mf.f;
   for (int i = 0; i < node.r; ++i) w.position[node.rows[i]] = i;
   std::fill(node.block, node.block + static_cast<long>(node.r) * node.k, 0.0);
-  gather_columns(lower, lower_values, node.first, node.k, node.r, w.position, node.block);
+  gather_columns(mf.lower, mf.lower_values, node.first, node.k, node.r, w.position, node.block);
   w.children.clear();
   w.first_update_column.clear();
   int* relative = w.relative.data();
@@ -96,37 +140,107 @@ void assemble_block(const SymbolicFactor& f, int s, const Supernode& node, const
     const int child_m = f.row_start[child + 1] - f.row_start[child] - child_k;
     const int* child_rows = f.rows.data() + f.row_start[child] + child_k;
     for (int q = 0; q < child_m; ++q) relative[q] = w.position[child_rows[q]];
-    w.children.push_back({w.stack.data() + w.stack_offset[child], child_m, relative});
+    w.children.push_back({mf.update_of(child), child_m, relative});
     w.first_update_column.push_back(add_to_pivot_block(w.children.back(), node.k, node.r, node.block));
     relative += child_m;
   }
 }
 
 // After the block of supernode s is factored: builds its update matrix -L21 L21^T plus the
-// rest of its children's updates on top of the stack, then moves it down over the children's
-// (which are on top of the stack, the first child lowest).
-void push_update(const SymbolicFactor& f, int s, const Supernode& node, Workspace& w) {
-  double* u = w.stack.data() + w.top;
+// rest of its children's updates on top of workspace `me`'s stack, then moves it down over the
+// children's that wait on that stack (on its top, the first such child lowest).
+void push_update(Multifrontal& mf, int s, const Supernode& node, int me) {
+  const SymbolicFactor& f = mf.f;
+  Workspace& w = mf.spaces[me];
+  double* u = w.stack.get() + w.top;
   if (node.m > 0) negative_lower_product(node.block + node.k, node.r, node.m, node.k, u);
   for (size_t c = 0; c < w.children.size(); ++c)
     add_to_update(w.children[c], w.first_update_column[c], node.k, u, node.m);
-  const bool has_children = f.child_start[s + 1] > f.child_start[s];
-  const size_t base = has_children ? w.stack_offset[f.children[f.child_start[s]]] : w.top;
+  size_t base = w.top;
+  for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c)
+    if (mf.owner[f.children[c]] == me) {
+      base = mf.stack_offset[f.children[c]];
+      break;
+    }
   const size_t size = node.m > 0 ? packed_size(node.m) : 0;
-  if (size > 0 && base != w.top) std::memmove(w.stack.data() + base, u, size * sizeof(double));
-  w.stack_offset[s] = base;
+  if (size > 0 && base != w.top) std::memmove(w.stack.get() + base, u, size * sizeof(double));
+  mf.owner[s] = me;
+  mf.stack_offset[s] = base;
   w.top = base + size;
+}
+
+// Factors supernode s on workspace `me`. Returns -1, or the column (in the factor's order) whose
+// pivot is not positive.
+int factor_supernode(Multifrontal& mf, int s, int me) {
+  const Supernode node = supernode(mf.f, mf.values, s);
+  assemble_block(mf, s, node, mf.spaces[me]);
+  const int failed = factor_panel(node.block, node.r, node.k);
+  if (failed >= 0) return node.first + failed;
+  push_update(mf, s, node, me);
+  return -1;
+}
+
+// The schedule's subtrees on `team` threads (workspace t for thread t, each subtree's root update
+// left on its thread's stack), then its top on workspace `team`. Returns -1, or the column of the
+// first supernode (in the serial order) whose pivot is not positive.
+int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int team) {
+  const SymbolicFactor& f = mf.f;
+  const int subtrees = static_cast<int>(schedule.root.size());
+  const int relative_size = most_child_rows(f);
+  // A thread's stack: the root updates of the subtrees it ran, below the one it runs.
+  size_t roots = 0, largest = 0;
+  for (int t = 0; t < subtrees; ++t) {
+    const int root = schedule.root[t];
+    const int k = f.first_column[root + 1] - f.first_column[root];
+    roots += packed_size(f.row_start[root + 1] - f.row_start[root] - k);
+    largest = std::max(largest, schedule.stack[t]);
+  }
+  for (int me = 0; me < team; ++me) mf.spaces[me].size_for(f, roots + largest, relative_size);
+  mf.spaces[team].size_for(f, schedule.top_stack, relative_size);
+  std::vector<int> failed_supernode(subtrees, -1), failed_column(subtrees, -1);
+#pragma omp parallel num_threads(team)
+  {
+    const int me = thread_index();
+#pragma omp for schedule(dynamic, 1)
+    for (int t = 0; t < subtrees; ++t) {
+      const size_t start = mf.spaces[me].top;
+      for (int s = schedule.first[t]; s <= schedule.root[t]; ++s) {
+        const int column = factor_supernode(mf, s, me);
+        if (column >= 0) {
+          failed_supernode[t] = s;
+          failed_column[t] = column;
+          mf.spaces[me].top = start;  // drops the failed subtree's updates
+          break;
+        }
+      }
+    }
+  }
+  // The serial order fails at the lowest failing supernode: a subtree's, or a top one below it
+  // (whose descendants all lie below it, so were factored).
+  int first_failure = f.num_supernodes(), column = -1;
+  for (int t = 0; t < subtrees; ++t)
+    if (failed_supernode[t] >= 0 && failed_supernode[t] < first_failure) {
+      first_failure = failed_supernode[t];
+      column = failed_column[t];
+    }
+  for (int s : schedule.top) {
+    if (s > first_failure) break;
+    const int top_column = factor_supernode(mf, s, team);
+    if (top_column >= 0) return top_column;
+  }
+  return column;
 }
 
 }  // namespace
 
-void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_values, FactorValues& factor) {
+void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_values, FactorValues& factor,
+                       const SubtreeSchedule* schedule, int team) {
   const std::vector<int>& source = analysis.lower.source;
   factor.lower_values.resize(source.size());
   for (size_t p = 0; p < source.size(); ++p) factor.lower_values[p] = a_values[source[p]];
   eliminate_prefix(analysis.prefix, factor.lower_values, analysis.perm, factor.prefix_diagonal, factor.prefix_below);
   factorize_supernodal(analysis.symbolic, analysis.lower.pattern, factor.lower_values.data(), analysis.perm,
-                       factor.supernodal);
+                       factor.supernodal, schedule, team);
 }
 
 void throw_not_positive_definite(int original_column) {
@@ -135,21 +249,20 @@ void throw_not_positive_definite(int original_column) {
 }
 
 void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const double* lower_values,
-                          const std::vector<int>& original_column, std::vector<double>& values) {
+                          const std::vector<int>& original_column, std::vector<double>& values,
+                          const SubtreeSchedule* schedule, int team) {
   const int ns = f.num_supernodes();
   values.resize(f.value_start[ns]);
-  Workspace w;
-  w.position.resize(f.n);
-  w.relative.resize(f.rows.size());  // each child's rows are a distinct part of f.rows
-  w.stack.resize(f.stack_size);
-  w.stack_offset.resize(ns);
-  for (int s = 0; s < ns; ++s) {
-    const Supernode node = supernode(f, values, s);
-    assemble_block(f, s, node, lower, lower_values, w);
-    const int failed = factor_panel(node.block, node.r, node.k);
-    if (failed >= 0) throw_not_positive_definite(original_column[node.first + failed]);
-    push_update(f, s, node, w);
+  int failed = -1;
+  if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
+    Multifrontal mf(f, lower, lower_values, values, team + 1);
+    failed = factorize_by_subtrees(mf, *schedule, team);
+  } else {
+    Multifrontal mf(f, lower, lower_values, values, 1);
+    mf.spaces[0].size_for(f, f.stack_size, most_child_rows(f));
+    for (int s = 0; s < ns && failed < 0; ++s) failed = factor_supernode(mf, s, 0);
   }
+  if (failed >= 0) throw_not_positive_definite(original_column[failed]);
 }
 
 }  // namespace meshik::sparse

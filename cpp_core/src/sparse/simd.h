@@ -20,15 +20,37 @@ constexpr int kLanes = 2;
 
 typedef double Vec __attribute__((vector_size(kLanes * sizeof(double))));
 
-// kLanes doubles from p (no alignment needed).
-inline Vec load(const double* p) {
-  Vec v;
+// Half a Vec, for passes over at most kHalfLanes columns (used where kLanes >= 4).
+constexpr int kHalfLanes = kLanes / 2;
+typedef double HalfVec __attribute__((vector_size(kHalfLanes * sizeof(double))));
+
+// v - s x for a Vec or a HalfVec, fused where the target has FMA: explicitly, since the compiler
+// may contract the written expression in some inlined copies of a pass and not in others
+// (different bits).
+template <class T>
+inline T subtract_product(T v, T s, T x) {
+#if defined(__FMA__) && defined(__AVX512F__)
+  if constexpr (sizeof(T) == 64) return _mm512_fnmadd_pd(s, x, v);
+  else return _mm256_fnmadd_pd(s, x, v);
+#elif defined(__FMA__) && defined(__AVX__)
+  if constexpr (sizeof(T) == 32) return _mm256_fnmadd_pd(s, x, v);
+  else return _mm_fnmadd_pd(s, x, v);
+#else
+  return v - s * x;
+#endif
+}
+
+// A T (a Vec by default, or a HalfVec) from p (no alignment needed).
+template <class T = Vec>
+inline T load(const double* p) {
+  T v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
 
-// Writes kLanes doubles to p (no alignment needed).
-inline void store(double* p, Vec v) { std::memcpy(p, &v, sizeof v); }
+// Writes v (a Vec or a HalfVec) to p (no alignment needed).
+template <class T>
+inline void store(double* p, T v) { std::memcpy(p, &v, sizeof v); }
 
 // All lanes equal to s.
 inline Vec broadcast(double s) {

@@ -1,6 +1,7 @@
 // SparseCholesky: ties the analysis, the numeric factorization and the solves together.
 #include "meshik/sparse_cholesky.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -21,7 +22,8 @@ using namespace sparse;
 namespace {
 
 // An analysed pattern (kept to check that factorize() gets the same one), its analysis and the
-// backward solve's subtrees, shared by every SparseCholesky analysed like the one that made it.
+// subtrees of the factorization and the backward solve, shared by every SparseCholesky analysed
+// like the one that made it.
 struct AnalyzedPattern {
   std::vector<int> col_start, row_index;
   Analysis analysis;
@@ -71,7 +73,8 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   check_lower_input(a);
   auto analyzed = std::make_shared<AnalyzedPattern>();
   analyzed->analysis = analyze_pattern(a);
-  analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic);
+  // Balanced for the cores (at least 2, also when analysed inside a parallel region).
+  analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic, std::max(2, thread_count(0)));
   analyzed->col_start = a.col_start;
   analyzed->row_index = a.row_index;
   impl_->reset(std::move(analyzed));
@@ -82,7 +85,7 @@ void SparseCholesky::share_analysis(const SparseCholesky& other) {
   impl_->reset(other.impl_->pattern);
 }
 
-void SparseCholesky::factorize(const CscMatrix& a) {
+void SparseCholesky::factorize(const CscMatrix& a, int threads) {
   Impl& s = *impl_;
   if (!s.pattern) throw std::logic_error("SparseCholesky::factorize: no analyze() or share_analysis() first");
   if (a.rows != a.cols || a.col_start != s.pattern->col_start || a.row_index != s.pattern->row_index)
@@ -92,7 +95,7 @@ void SparseCholesky::factorize(const CscMatrix& a) {
     throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
                                 " entries, expected " + std::to_string(a.row_index.size()));
   s.factorized = false;
-  factorize_numeric(s.analysis(), a.values, s.factor);
+  factorize_numeric(s.analysis(), a.values, s.factor, &s.pattern->schedule, thread_count(threads));
   s.factorized = true;
 }
 
@@ -139,7 +142,8 @@ int SparseCholesky::padded_width(int nrhs) { return round_up_to_lanes(nrhs); }
 
 void SparseCholesky::forward_solve_in_order(double* x, int stride, int columns, int threads) const {
   check_in_order_arguments(impl_->factorized, stride, columns);
-  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads));
+  forward_solve(impl_->analysis(), impl_->factor, x, stride, columns, thread_count(threads),
+                &impl_->pattern->schedule);
 }
 
 void SparseCholesky::backward_solve_in_order(double* x, int stride, int columns, int threads) const {

@@ -7,12 +7,11 @@ namespace meshik::sparse {
 
 namespace {
 
-constexpr int kNominalThreads = 4;  // the team the split is balanced for (not the actual one)
 constexpr int kMaxSplits = 512;     // supernodes taken apart at most
 
 }  // namespace
 
-SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
+SubtreeSchedule subtree_schedule(const SymbolicFactor& f, int threads) {
   const int count = f.num_supernodes();
   // Work and first (lowest) supernode of each subtree; children precede their parent.
   std::vector<double> own(count), work(count);
@@ -31,6 +30,9 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
   for (int s = 0; s < count; ++s)
     if (size[s] != s - first[s] + 1) {  // not a postorder: everything on top, in one pass
       for (int t = 0; t < count; ++t) schedule.top.push_back(t);
+      schedule.top_stack = f.stack_size;
+      schedule.top_row.assign(count, 0);
+      schedule.top_pass = schedule.top;
       return schedule;
     }
   double total = 0.0;
@@ -42,7 +44,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
     }
   // Takes the largest subtree apart `splits` times (or until it is a leaf), leaving the subtrees
   // in `subtrees` and the taken roots in `top`. Returns the number of splits (at most `splits`)
-  // after which the estimated time on kNominalThreads was least: the top, then the subtrees (at
+  // after which the estimated time on `threads` was least: the top, then the subtrees (at
   // best the rest shared evenly, at worst the largest alone).
   auto split = [&](int splits, std::vector<int>& top, std::vector<int>& subtrees) {
     subtrees = roots;
@@ -61,7 +63,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
       double largest_work = 0.0;
       for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) subtrees.push_back(f.children[c]);
       for (int t : subtrees) largest_work = std::max(largest_work, work[t]);
-      const double time = top_work + std::max(largest_work, (total - top_work) / kNominalThreads);
+      const double time = top_work + std::max(largest_work, (total - top_work) / threads);
       if (time < best_time) {
         best_time = time;
         best = step;
@@ -73,9 +75,27 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f) {
   split(split(std::min(count, kMaxSplits), schedule.top, subtrees), schedule.top, subtrees);
   std::sort(schedule.top.begin(), schedule.top.end());
   std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); });
-  for (int s : subtrees) {
+  const int groups = static_cast<int>(subtrees.size());
+  std::vector<int> group(count, groups);  // the top is the last group
+  for (int t = 0; t < groups; ++t) {
+    const int s = subtrees[t];
     schedule.first.push_back(first[s]);
     schedule.root.push_back(s);
+    std::fill(group.begin() + first[s], group.begin() + s + 1, t);
+  }
+  schedule.stack = peak_stacks(f, group, groups + 1);
+  schedule.top_stack = schedule.stack.back();
+  schedule.stack.pop_back();
+  // A subtree's rows end at its root's last column; the rows after it are the top's.
+  schedule.top_row.assign(count, 0);
+  for (int s = 0; s < count; ++s) {
+    if (group[s] < groups) {
+      const int root = schedule.root[group[s]];
+      const int* rows = f.rows.data() + f.row_start[s];
+      const int k = f.first_column[s + 1] - f.first_column[s], r = f.row_start[s + 1] - f.row_start[s];
+      schedule.top_row[s] = static_cast<int>(std::upper_bound(rows + k, rows + r, f.first_column[root + 1] - 1) - rows);
+    }
+    if (schedule.top_row[s] < f.row_start[s + 1] - f.row_start[s]) schedule.top_pass.push_back(s);
   }
   return schedule;
 }

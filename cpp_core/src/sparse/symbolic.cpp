@@ -67,25 +67,6 @@ void row_structures(const Pattern& graph, const SupernodePartition& partition,
     if (next[s] != f.row_start[s + 1]) throw std::logic_error("SparseCholesky: inconsistent supernode row count");
 }
 
-// Peak size of the update stack when supernodes are processed in order: a supernode's update
-// matrix is built on top of its children's, which are then removed. Returns doubles.
-size_t peak_stack(const SymbolicFactor& f) {
-  const int ns = f.num_supernodes();
-  std::vector<size_t> pending(ns, 0);  // total size of the children's updates waiting for s
-  size_t stack = 0, peak = 0;
-  for (int s = 0; s < ns; ++s) {
-    const int k = f.first_column[s + 1] - f.first_column[s];
-    const size_t own = packed_size(f.row_start[s + 1] - f.row_start[s] - k);
-    peak = std::max(peak, stack + own);
-    stack -= pending[s];
-    if (f.parent[s] != -1) {
-      stack += own;
-      pending[f.parent[s]] += own;
-    }
-  }
-  return peak;
-}
-
 }  // namespace
 
 SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
@@ -106,9 +87,27 @@ SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& par
   for (int s = 0; s < ns; ++s)
     f.value_start[s + 1] = f.value_start[s] + static_cast<size_t>(f.row_start[s + 1] - f.row_start[s]) *
                                                   (f.first_column[s + 1] - f.first_column[s]);
-  f.stack_size = peak_stack(f);
+  f.stack_size = peak_stacks(f, std::vector<int>(ns, 0), 1)[0];
   for (int c : counts) f.structural_nonzeros += c;
   return f;
+}
+
+std::vector<size_t> peak_stacks(const SymbolicFactor& f, const std::vector<int>& group, int groups) {
+  const int ns = f.num_supernodes();
+  std::vector<size_t> pending(ns, 0);  // total size of the children's updates waiting for s
+  std::vector<size_t> stack(groups, 0), peak(groups, 0);
+  for (int s = 0; s < ns; ++s) {
+    const int g = group[s];
+    const int k = f.first_column[s + 1] - f.first_column[s];
+    const size_t own = packed_size(f.row_start[s + 1] - f.row_start[s] - k);
+    peak[g] = std::max(peak[g], stack[g] + own);
+    stack[g] -= pending[s];
+    if (f.parent[s] != -1 && group[f.parent[s]] == g) {
+      stack[g] += own;
+      pending[f.parent[s]] += own;
+    }
+  }
+  return peak;
 }
 
 }  // namespace meshik::sparse

@@ -38,6 +38,13 @@ SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& par
                                const std::vector<int>& counts, const SupernodePartition& partition,
                                int column_offset);
 
+// Peak sizes in doubles of the multifrontal update stacks when the supernodes of f are
+// processed in order, those of group g (group: #S entries in [0, groups)) on stack g: a
+// supernode's update matrix is built on top of its group's stack and stays there until its parent
+// takes it when the parent is in the group (else it is held elsewhere, and counts only while it is
+// built). Returns #groups sizes; one group gives f.stack_size.
+std::vector<size_t> peak_stacks(const SymbolicFactor& f, const std::vector<int>& group, int groups);
+
 // Size in doubles of the packed lower triangle of an m by m update matrix.
 inline size_t packed_size(int m) { return static_cast<size_t>(m) * (m + 1) / 2; }
 

@@ -1,6 +1,7 @@
 #include "sparse/triangular_solve.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "sparse/simd.h"
 
@@ -8,47 +9,67 @@ namespace meshik::sparse {
 
 namespace {
 
-// The passes work on V vectors (V * kLanes right-hand sides) at a time, so each row's values
-// live in registers; x points at the chunk's first column and rows of x are `stride` apart.
-// Several rows (forward) or columns (backward) are carried together so that independent
+// The passes work on P::kCount vectors of P::kWidth right-hand sides at a time (P a Pack), so each
+// row's values live in registers; x points at the chunk's first column and rows of x are `stride`
+// apart. Several rows (forward) or columns (backward) are carried together so that independent
 // multiply-adds hide each other's latency and every row of x is loaded once per group.
 
-// B rows of V vectors each.
-template <int V, int B>
+// V vectors of type T (kWidth doubles each) per row.
+template <class T, int V>
+struct Pack {
+  using Type = T;
+  static constexpr int kCount = V;
+  static constexpr int kWidth = sizeof(T) / sizeof(double);
+  // All lanes equal to a.
+  static T broadcast(double a) {
+    if constexpr (std::is_same_v<T, Vec>) return sparse::broadcast(a);
+    else return a - T{};  // exact: a - 0 is a, signed zeros included
+  }
+};
+
+// V whole vectors; one half vector (at most kLanes / 2 right-hand sides, which a whole vector
+// would carry with as many padding lanes: on AVX-512 machines that split it, twice the work).
+template <int V>
+using Whole = Pack<Vec, V>;
+using Half = Pack<HalfVec, 1>;
+
+// B rows of P::kCount vectors each.
+template <class P, int B>
 struct Rows {
-  Vec v[B][V];
+  static constexpr int V = P::kCount;
+  typename P::Type v[B][V];
   void load_from(double* const* p) {
     for (int b = 0; b < B; ++b)
-      for (int c = 0; c < V; ++c) v[b][c] = load(p[b] + c * kLanes);
+      for (int c = 0; c < V; ++c) v[b][c] = load<typename P::Type>(p[b] + c * P::kWidth);
   }
   void store_to(double* const* p) const {
     for (int b = 0; b < B; ++b)
-      for (int c = 0; c < V; ++c) store(p[b] + c * kLanes, v[b][c]);
+      for (int c = 0; c < V; ++c) store(p[b] + c * P::kWidth, v[b][c]);
   }
   // every row *= a
   void scale(double a) {
-    const Vec s = broadcast(a);
+    const typename P::Type s = P::broadcast(a);
     for (int b = 0; b < B; ++b)
       for (int c = 0; c < V; ++c) v[b][c] *= s;
   }
   // row b -= a[b] * x for every b
   void subtract_scaled(const double* a, const double* x) {
-    Vec xv[V];
-    for (int c = 0; c < V; ++c) xv[c] = load(x + c * kLanes);
+    typename P::Type xv[V];
+    for (int c = 0; c < V; ++c) xv[c] = load<typename P::Type>(x + c * P::kWidth);
     for (int b = 0; b < B; ++b) {
-      const Vec s = broadcast(a[b]);
-      for (int c = 0; c < V; ++c) v[b][c] -= s * xv[c];
+      const typename P::Type s = P::broadcast(a[b]);
+      for (int c = 0; c < V; ++c) v[b][c] = subtract_product(v[b][c], s, xv[c]);
     }
   }
 };
 
 // Solves L11 y = x_s in place for the supernode's k consecutive rows xs (L11: the top of the
 // column-major block, leading dimension r), row by row.
-template <int V>
+template <class P>
 void diagonal_forward(const double* block, int k, int r, double* xs, long stride) {
   for (int i = 0; i < k; ++i) {
     double* xi = xs + i * stride;
-    Rows<V, 1> acc;
+    Rows<P, 1> acc;
     acc.load_from(&xi);
     for (int j = 0; j < i; ++j) acc.subtract_scaled(block + static_cast<long>(j) * r + i, xs + j * stride);
     acc.scale(1.0 / block[static_cast<long>(i) * r + i]);
@@ -57,12 +78,12 @@ void diagonal_forward(const double* block, int k, int r, double* xs, long stride
 }
 
 // Solves L11^T y = x_s in place (see diagonal_forward), from the last row up.
-template <int V>
+template <class P>
 void diagonal_backward(const double* block, int k, int r, double* xs, long stride) {
   for (int j = k - 1; j >= 0; --j) {
     const double* lj = block + static_cast<long>(j) * r;
     double* xj = xs + j * stride;
-    Rows<V, 1> acc;
+    Rows<P, 1> acc;
     acc.load_from(&xj);
     for (int i = j + 1; i < k; ++i) acc.subtract_scaled(lj + i, xs + i * stride);
     acc.scale(1.0 / lj[j]);
@@ -71,19 +92,19 @@ void diagonal_backward(const double* block, int k, int r, double* xs, long strid
 }
 
 // x_{rows[i + b]} -= L(i + b, :) y_s for b < B (L: block, k columns, leading dimension r).
-template <int V, int B>
+template <class P, int B>
 void update_rows_below(const double* block, int k, int r, int i, const int* rows, const double* xs,
                        double* x, long stride) {
   double* xi[B];
   for (int b = 0; b < B; ++b) xi[b] = x + rows[i + b] * stride;
-  Rows<V, B> acc;
+  Rows<P, B> acc;
   acc.load_from(xi);
   for (int j = 0; j < k; ++j) acc.subtract_scaled(block + static_cast<long>(j) * r + i, xs + j * stride);
   acc.store_to(xi);
 }
 
 // x_{j + b} -= sum over the rows i below the supernode of L(i, j + b) x_{rows[i]}, b < B.
-template <int V, int B>
+template <class P, int B>
 void update_from_rows_below(const double* block, int k, int r, int j, const int* rows, double* xs,
                             const double* x, long stride) {
   double* xj[B];
@@ -92,7 +113,7 @@ void update_from_rows_below(const double* block, int k, int r, int j, const int*
     xj[b] = xs + (j + b) * stride;
     lj[b] = block + static_cast<long>(j + b) * r;
   }
-  Rows<V, B> acc;
+  Rows<P, B> acc;
   acc.load_from(xj);
   for (int i = k; i < r; ++i) {
     double l[B];
@@ -105,42 +126,42 @@ void update_from_rows_below(const double* block, int k, int r, int j, const int*
 constexpr int kGroup = 4;  // rows or columns carried together
 
 // update_rows_below for the last `count` (< kGroup) rows from i.
-template <int V>
+template <class P>
 void update_last_rows_below(int count, const double* block, int k, int r, int i, const int* rows,
                             const double* xs, double* x, long stride) {
   switch (count) {
-    case 3: update_rows_below<V, 3>(block, k, r, i, rows, xs, x, stride); break;
-    case 2: update_rows_below<V, 2>(block, k, r, i, rows, xs, x, stride); break;
-    case 1: update_rows_below<V, 1>(block, k, r, i, rows, xs, x, stride); break;
+    case 3: update_rows_below<P, 3>(block, k, r, i, rows, xs, x, stride); break;
+    case 2: update_rows_below<P, 2>(block, k, r, i, rows, xs, x, stride); break;
+    case 1: update_rows_below<P, 1>(block, k, r, i, rows, xs, x, stride); break;
     default: break;
   }
 }
 
 // update_from_rows_below for the last `count` (< kGroup) columns from j.
-template <int V>
+template <class P>
 void update_last_from_rows_below(int count, const double* block, int k, int r, int j, const int* rows,
                                  double* xs, const double* x, long stride) {
   switch (count) {
-    case 3: update_from_rows_below<V, 3>(block, k, r, j, rows, xs, x, stride); break;
-    case 2: update_from_rows_below<V, 2>(block, k, r, j, rows, xs, x, stride); break;
-    case 1: update_from_rows_below<V, 1>(block, k, r, j, rows, xs, x, stride); break;
+    case 3: update_from_rows_below<P, 3>(block, k, r, j, rows, xs, x, stride); break;
+    case 2: update_from_rows_below<P, 2>(block, k, r, j, rows, xs, x, stride); break;
+    case 1: update_from_rows_below<P, 1>(block, k, r, j, rows, xs, x, stride); break;
     default: break;
   }
 }
 
 // Forward pass over the simplicial prefix for one chunk: x_u /= L(u, u), then
 // x_r -= L(r, u) x_u for its rows r.
-template <int V>
+template <class P>
 void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, double* x, long stride) {
   for (int u = 0; u < p.size; ++u) {
     double* xu = x + u * stride;
-    Rows<V, 1> acc;
+    Rows<P, 1> acc;
     acc.load_from(&xu);
     acc.scale(1.0 / factor.prefix_diagonal[u]);
     acc.store_to(&xu);
     for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t) {
       double* xr = x + p.rows[t] * stride;
-      Rows<V, 1> row;
+      Rows<P, 1> row;
       row.load_from(&xr);
       row.subtract_scaled(&factor.prefix_below[t], xu);
       row.store_to(&xr);
@@ -150,13 +171,13 @@ void prefix_forward(const SimplicialPrefix& p, const FactorValues& factor, doubl
 
 // Backward pass over the simplicial prefix (last column first) for one chunk:
 // x_u = (x_u - sum_r L(r, u) x_r) / L(u, u).
-template <int V>
+template <class P>
 void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, const Reach* reach, double* x,
                      long stride) {
   for (int u = p.size - 1; u >= 0; --u) {
     if (reach != nullptr && !reach->row[u]) continue;
     double* xu = x + u * stride;
-    Rows<V, 1> acc;
+    Rows<P, 1> acc;
     acc.load_from(&xu);
     for (int t = p.row_start[u]; t < p.row_start[u + 1]; ++t)
       acc.subtract_scaled(&factor.prefix_below[t], x + p.rows[t] * stride);
@@ -165,32 +186,45 @@ void prefix_backward(const SimplicialPrefix& p, const FactorValues& factor, cons
   }
 }
 
-// Forward pass (prefix, then supernodes) for one chunk.
-template <int V>
-void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
-  prefix_forward<V>(analysis.prefix, factor, x, stride);
-  const SymbolicFactor& f = analysis.symbolic;
-  const double* values = factor.supernodal.data();
-  for (int s = 0; s < f.num_supernodes(); ++s) {
-    const int k = f.first_column[s + 1] - f.first_column[s];
-    const int r = f.row_start[s + 1] - f.row_start[s];
-    const int* rows = f.rows.data() + f.row_start[s];
-    const double* block = values + f.value_start[s];
-    double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
-    diagonal_forward<V>(block, k, r, xs, stride);
-    int i = k;  // rows below in groups of 2 kGroup (each x_s row loaded once per group), then kGroup
-    for (; i + 2 * kGroup <= r; i += 2 * kGroup)
-      update_rows_below<V, 2 * kGroup>(block, k, r, i, rows, xs, x, stride);
-    if (i + kGroup <= r) {
-      update_rows_below<V, kGroup>(block, k, r, i, rows, xs, x, stride);
-      i += kGroup;
-    }
-    update_last_rows_below<V>(r - i, block, k, r, i, rows, xs, x, stride);
+// x_{rows[i]} -= L(i, :) y_s for the rows i in [begin, end) below the diagonal block (begin >= k):
+// in groups of 2 kGroup rows (each x_s row loaded once per group), then kGroup, then the rest.
+template <class P>
+void update_row_range(const double* block, int k, int r, int begin, int end, const int* rows, const double* xs,
+                      double* x, long stride) {
+  int i = begin;
+  for (; i + 2 * kGroup <= end; i += 2 * kGroup) update_rows_below<P, 2 * kGroup>(block, k, r, i, rows, xs, x, stride);
+  if (i + kGroup <= end) {
+    update_rows_below<P, kGroup>(block, k, r, i, rows, xs, x, stride);
+    i += kGroup;
   }
+  update_last_rows_below<P>(end - i, block, k, r, i, rows, xs, x, stride);
+}
+
+// Forward pass over the rows [begin, end) of supernode s (indices among its r rows) for one
+// chunk: with begin = 0 its diagonal block first (its own k rows), then the updates of the rows
+// below in the range.
+template <class P>
+void forward_supernode(const SymbolicFactor& f, const double* values, int s, int begin, int end, double* x,
+                       long stride) {
+  const int k = f.first_column[s + 1] - f.first_column[s];
+  const int r = f.row_start[s + 1] - f.row_start[s];
+  const double* block = values + f.value_start[s];
+  double* xs = x + f.first_column[s] * stride;  // the supernode's k rows are consecutive
+  if (begin == 0) diagonal_forward<P>(block, k, r, xs, stride);
+  update_row_range<P>(block, k, r, std::max(begin, k), end, f.rows.data() + f.row_start[s], xs, x, stride);
+}
+
+// Forward pass (prefix, then supernodes) for one chunk.
+template <class P>
+void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
+  prefix_forward<P>(analysis.prefix, factor, x, stride);
+  const SymbolicFactor& f = analysis.symbolic;
+  for (int s = 0; s < f.num_supernodes(); ++s)
+    forward_supernode<P>(f, factor.supernodal.data(), s, 0, f.row_start[s + 1] - f.row_start[s], x, stride);
 }
 
 // Backward pass over supernode s for one chunk: its rows of x from the rows below (done before).
-template <int V>
+template <class P>
 void backward_supernode(const SymbolicFactor& f, const double* values, int s, double* x, long stride) {
     const int k = f.first_column[s + 1] - f.first_column[s];
     const int r = f.row_start[s + 1] - f.row_start[s];
@@ -199,25 +233,25 @@ void backward_supernode(const SymbolicFactor& f, const double* values, int s, do
     double* xs = x + f.first_column[s] * stride;
     int j = 0;  // columns in groups of 2 kGroup (each row below loaded once per group), then kGroup
     for (; j + 2 * kGroup <= k; j += 2 * kGroup)
-      update_from_rows_below<V, 2 * kGroup>(block, k, r, j, rows, xs, x, stride);
+      update_from_rows_below<P, 2 * kGroup>(block, k, r, j, rows, xs, x, stride);
     if (j + kGroup <= k) {
-      update_from_rows_below<V, kGroup>(block, k, r, j, rows, xs, x, stride);
+      update_from_rows_below<P, kGroup>(block, k, r, j, rows, xs, x, stride);
       j += kGroup;
     }
-    update_last_from_rows_below<V>(k - j, block, k, r, j, rows, xs, x, stride);
-    diagonal_backward<V>(block, k, r, xs, stride);
+    update_last_from_rows_below<P>(k - j, block, k, r, j, rows, xs, x, stride);
+    diagonal_backward<P>(block, k, r, xs, stride);
 }
 
 // Backward pass (supernodes from the last, then the prefix) for one chunk; with a reach, only
 // over its part. With team > 1: the schedule's top first, then its subtrees on the team's
 // threads (each supernode's arithmetic is the same whichever thread does it).
-template <int V>
+template <class P>
 void backward_chunk(const Analysis& analysis, const FactorValues& factor, const Reach* reach, double* x,
                     long stride, const SubtreeSchedule* schedule, int team) {
   const SymbolicFactor& f = analysis.symbolic;
   const double* values = factor.supernodal.data();
   auto pass = [&](int s) {
-    if (reach == nullptr || reach->supernode[s]) backward_supernode<V>(f, values, s, x, stride);
+    if (reach == nullptr || reach->supernode[s]) backward_supernode<P>(f, values, s, x, stride);
   };
   if (schedule == nullptr || team <= 1 || schedule->root.size() < 2) {
     for (int s = f.num_supernodes() - 1; s >= 0; --s) pass(s);
@@ -228,62 +262,100 @@ void backward_chunk(const Analysis& analysis, const FactorValues& factor, const 
     for (int t = 0; t < subtrees; ++t)
       for (int s = schedule->root[t]; s >= schedule->first[t]; --s) pass(s);
   }
-  prefix_backward<V>(analysis.prefix, factor, reach, x, stride);
+  prefix_backward<P>(analysis.prefix, factor, reach, x, stride);
 }
 
 // Most vectors per chunk: 16 right-hand sides.
 constexpr int kMaxVectors = 16 / kLanes;
 
-template <int V>
-struct Forward {
-  // Runs forward_chunk<vectors> (vectors <= V); the forward pass has no reach and no schedule.
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach*,
-                       const SubtreeSchedule*, int, double* x, long stride) {
-    if (vectors == V) forward_chunk<V>(a, factor, x, stride);
-    else if constexpr (V > 1) Forward<V - 1>::dispatch(vectors, a, factor, nullptr, nullptr, 1, x, stride);
-  }
-};
+// Calls work(P()) for a chunk's pack: Half when `half`, else Whole<vectors> (1 <= vectors <= V).
+template <int V = kMaxVectors, class Work>
+void with_pack(bool half, int vectors, Work&& work) {
+  if (half) work(Half());
+  else if (vectors == V) work(Whole<V>());
+  else if constexpr (V > 1) with_pack<V - 1>(false, vectors, work);
+}
 
-template <int V>
-struct Backward {
-  // Runs backward_chunk<vectors> (vectors <= V).
-  static void dispatch(int vectors, const Analysis& a, const FactorValues& factor, const Reach* reach,
-                       const SubtreeSchedule* schedule, int team, double* x, long stride) {
-    if (vectors == V) backward_chunk<V>(a, factor, reach, x, stride, schedule, team);
-    else if constexpr (V > 1) Backward<V - 1>::dispatch(vectors, a, factor, reach, schedule, team, x, stride);
-  }
-};
+// Whether `columns` right-hand sides fit in half a vector (and the target has such halves).
+bool fits_half(int columns) { return kLanes >= 4 && columns <= kHalfLanes; }
 
-// Runs Pass on chunks of at most kMaxVectors vectors covering the first `columns` (rounded up to
-// whole vectors) of each row. With team > 1: without a schedule, on groups of fewer vectors, one
-// thread per group (each column's arithmetic is the same in any group, so the result is the same
-// bits); with one, each chunk on the schedule's subtrees.
-template <template <int> class Pass>
-void by_chunks(const Analysis& a, const FactorValues& factor, const Reach* reach, const SubtreeSchedule* schedule,
-               double* x, int stride, int columns, int team) {
+// Runs pass(P(), xc) on chunks of at most kMaxVectors vectors covering the first `columns` of each
+// row (one half vector when they fit in it, else whole vectors), xc the chunk's first column.
+// With column_team > 1, on groups of fewer vectors, one thread per group (each column's arithmetic
+// is the same in any group, so the result is the same bits).
+template <class Pass>
+void by_chunks(double* x, int columns, int column_team, Pass&& pass) {
+  const bool half = fits_half(columns);
   const int vectors = round_up_to_lanes(columns) / kLanes;
-  const int column_team = schedule == nullptr ? std::max(team, 1) : 1;
   const int per_group = std::max(1, std::min(kMaxVectors, (vectors + column_team - 1) / column_team));
   const int groups = (vectors + per_group - 1) / per_group;
-#pragma omp parallel for schedule(static) num_threads(std::min(column_team, std::max(groups, 1))) \
-    if (column_team > 1 && groups > 1)
-  for (int g = 0; g < groups; ++g) {
+  auto run_group = [&](int g) {
     const int first = g * per_group;
-    Pass<kMaxVectors>::dispatch(std::min(per_group, vectors - first), a, factor, reach, schedule,
-                                schedule == nullptr ? 1 : team, x + first * kLanes, stride);
+    with_pack(half, std::min(per_group, vectors - first), [&](auto pack) { pass(pack, x + first * kLanes); });
+  };
+  if (column_team > 1 && groups > 1) {
+#pragma omp parallel for schedule(static) num_threads(std::min(column_team, groups))
+    for (int g = 0; g < groups; ++g) run_group(g);
+  } else {
+    // No region around the schedule's passes: theirs must be the outermost, whose threads the
+    // runtime keeps (a team nested in an inactive region is started afresh on every call).
+    for (int g = 0; g < groups; ++g) run_group(g);
+  }
+}
+
+// The forward pass on `team` threads over the schedule's subtrees, chunk by chunk of columns: the
+// prefix, then in one parallel region each subtree's own rows on one thread (all the chunk's
+// columns) and the top pass with the chunk's vectors in groups, one thread per group. Every row of
+// x sees the same operations in the same order as in forward_chunk (a top row's updates in
+// increasing supernode order, in the top pass), so the result is the same bits.
+void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const SubtreeSchedule& schedule, double* x,
+                         int stride, int columns, int team) {
+  const SymbolicFactor& f = a.symbolic;
+  const double* values = factor.supernodal.data();
+  const bool half = fits_half(columns);
+  const int vectors = round_up_to_lanes(columns) / kLanes;
+  const int subtrees = static_cast<int>(schedule.root.size());
+  for (int first = 0; first < vectors; first += kMaxVectors) {
+    const int chunk = std::min(kMaxVectors, vectors - first);
+    const int per_group = (chunk + team - 1) / team;
+    const int groups = (chunk + per_group - 1) / per_group;
+    double* xc = x + first * kLanes;
+    with_pack(half, chunk, [&](auto pack) { prefix_forward<decltype(pack)>(a.prefix, factor, xc, stride); });
+#pragma omp parallel num_threads(team)
+    {
+      with_pack(half, chunk, [&](auto pack) {
+#pragma omp for schedule(dynamic, 1)
+        for (int t = 0; t < subtrees; ++t)
+          for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
+            forward_supernode<decltype(pack)>(f, values, s, 0, schedule.top_row[s], xc, stride);
+      });  // the loop's barrier: every subtree done before the top pass
+#pragma omp for schedule(static)
+      for (int g = 0; g < groups; ++g)
+        with_pack(half, std::min(per_group, chunk - g * per_group), [&](auto pack) {
+          for (int s : schedule.top_pass)
+            forward_supernode<decltype(pack)>(f, values, s, schedule.top_row[s], f.row_start[s + 1] - f.row_start[s],
+                                              xc + g * per_group * kLanes, stride);
+        });
+    }
   }
 }
 
 }  // namespace
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                   int columns, int team) {
-  by_chunks<Forward>(analysis, factor, nullptr, nullptr, x, stride, columns, team);
+                   int columns, int team, const SubtreeSchedule* schedule) {
+  if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
+    forward_by_subtrees(analysis, factor, *schedule, x, stride, columns, team);
+    return;
+  }
+  by_chunks(x, columns, team, [&](auto pack, double* xc) { forward_chunk<decltype(pack)>(analysis, factor, xc, stride); });
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
                     int columns, int team, const SubtreeSchedule* schedule) {
-  by_chunks<Backward>(analysis, factor, nullptr, schedule, x, stride, columns, team);
+  by_chunks(x, columns, schedule == nullptr ? team : 1, [&](auto pack, double* xc) {
+    backward_chunk<decltype(pack)>(analysis, factor, nullptr, xc, stride, schedule, schedule == nullptr ? 1 : team);
+  });
 }
 
 Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
@@ -309,7 +381,9 @@ Reach reach_to_roots(const Analysis& analysis, const std::vector<int>& rows) {
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, const Reach& reach, double* x,
                     int stride, int columns, int team, const SubtreeSchedule* schedule) {
-  by_chunks<Backward>(analysis, factor, &reach, schedule, x, stride, columns, team);
+  by_chunks(x, columns, schedule == nullptr ? team : 1, [&](auto pack, double* xc) {
+    backward_chunk<decltype(pack)>(analysis, factor, &reach, xc, stride, schedule, schedule == nullptr ? 1 : team);
+  });
 }
 
 }  // namespace meshik::sparse

@@ -12,11 +12,13 @@ namespace meshik::sparse {
 
 // x: n rows of `stride` doubles (stride a multiple of kLanes, see simd.h), in the factor's
 // (permuted) order; every column of x is a right-hand side. Overwrites the first `columns`
-// (<= stride) columns of x, rounded up to whole vectors, with L^{-1} x; the others are untouched.
-// team: threads (a thread_count), each solving a group of whole vectors of columns; the result is
-// the same bits for any team.
+// (<= stride) columns of x, rounded up to whole vectors (to half a vector when they fit in one),
+// with L^{-1} x; the others are untouched.
+// team: threads (a thread_count). Without a schedule each solves a group of whole vectors of
+// columns; with one (subtree_schedule of analysis.symbolic), each a subtree at a time on all
+// columns, then the top's rows by groups of columns. The result is the same bits for any team.
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
-                   int columns, int team = 1);
+                   int columns, int team = 1, const SubtreeSchedule* schedule = nullptr);
 
 // As forward_solve, with L^{-T} x; with team > 1 and a schedule (subtree_schedule of
 // analysis.symbolic), the schedule's subtrees run on the team's threads instead of the groups of

@@ -1,0 +1,146 @@
+// Where the time of one Gauss-Newton iteration goes, on 1 thread and on all cores (measured
+// alternately in the same run): the horse and the elephant from --data (../shared/data), examples 1-4,
+// 16 farthest-point handles, targets from pose 5, at the linear start's weights. Phases:
+//   factor    = the handle set's system (assembly of K' and its numeric factorization; once per
+//               handle set, never per iteration),
+//   evaluate  = one evaluation with the Jacobian (what an iteration runs once), split into
+//     forward   = the forward solve of its 3 (#E + 1) right-hand sides,
+//     backward  = the backward solve of the 3 coordinates of x0,
+//     rest      = evaluate - forward - backward: blend and scatter of the features, the outer
+//                 products of the forward-solved rows, the pose and its residuals,
+//   second    = the second-order term (one more pass over the triangles, once per step taken).
+// An iteration is about evaluate + second; the whole pose adds the first evaluation.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "example_set_impl.h"
+#include "linear_start.h"
+#include "obj_reader.h"
+#include "paper_handles.h"
+#include "pose_evaluation.h"
+#include "pose_system.h"
+#include "thread_count.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double milliseconds_of(const std::function<void()>& work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Medians (ms) of `repeats` runs of work(team) for each team in `teams`, the teams taking turns so
+// that all see the same load of the machine. Returns one median per team.
+std::vector<double> alternate_medians(int repeats, const std::vector<int>& teams,
+                                      const std::function<void(int)>& work) {
+  std::vector<std::vector<double>> times(teams.size());
+  for (int r = 0; r < repeats; ++r)
+    for (size_t t = 0; t < teams.size(); ++t) times[t].push_back(milliseconds_of([&] { work(teams[t]); }));
+  std::vector<double> medians;
+  for (auto& list : times) {
+    std::sort(list.begin(), list.end());
+    medians.push_back(list[list.size() / 2]);
+  }
+  return medians;
+}
+
+// One data set's phases (see the header), per team.
+void time_phases(const std::string& name, const fs::path& dir, int repeats, const std::vector<int>& teams) {
+  const auto rest = meshik_bench::read_obj((dir / "reference.obj").string());
+  std::vector<std::vector<double>> examples;
+  std::vector<const double*> pointers;
+  for (int k = 1; k <= 4; ++k) examples.push_back(meshik_bench::read_obj((dir / (std::to_string(k) + ".obj")).string()).vertices);
+  for (const auto& e : examples) pointers.push_back(e.data());
+  const std::vector<double> pose = meshik_bench::read_obj((dir / "5.obj").string()).vertices;
+  const meshik::MeshView view{rest.vertices.data(), rest.num_vertices(), rest.triangles.data(), rest.num_triangles()};
+  const meshik::ExampleSet examples_set(view, pointers);
+  const meshik::ExampleSet::Impl& set = examples_set.impl();
+  const std::vector<int> user_handles = meshik_bench::farthest_point_handles(rest.vertices, 16);
+  std::vector<int> handles;
+  std::vector<double> targets;
+  for (int v : user_handles) {
+    handles.push_back(set.internal_of_vertex[v]);
+    for (int c = 0; c < 3; ++c) targets.push_back(pose[3 * static_cast<size_t>(v) + c]);
+  }
+
+  const auto factor = alternate_medians(repeats, teams, [&](int team) { meshik::PoseSystem(set, handles, {}, team); });
+  const meshik::PoseSystem system(set, handles);
+  const Eigen::VectorXd weights = meshik::LinearStart(set, system).weights(targets.data(), 0.0);
+  meshik::EvaluationBuffers buffers;
+  meshik::PoseEvaluation at;
+  const auto evaluate = alternate_medians(repeats, teams, [&](int team) {
+    meshik::PoseEvaluator(set, system, meshik::FeatureSpace::kNonlinear, 0.0, targets.data(), buffers, team)
+        .evaluate(weights.data(), true, at);
+  });
+  std::vector<double> second_order;
+  for (int team : teams) {
+    meshik::PoseEvaluator evaluator(set, system, meshik::FeatureSpace::kNonlinear, 0.0, targets.data(), buffers, team);
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+      evaluator.evaluate(weights.data(), true, at);
+      times.push_back(milliseconds_of([&] { evaluator.add_second_order(at); }));
+    }
+    std::sort(times.begin(), times.end());
+    second_order.push_back(times[times.size() / 2]);
+  }
+  const int columns = 3 * (set.num_examples + 1);
+  const int stride = meshik::PoseSystem::padded_width(columns);
+  std::vector<double> x(static_cast<size_t>(system.num_rows()) * stride);
+  for (size_t i = 0; i < x.size(); ++i) x[i] = 1.0 / (1.0 + static_cast<double>(i % 97));
+  const std::vector<double> b = x;
+  const auto forward = alternate_medians(repeats, teams, [&](int team) {
+    std::copy(b.begin(), b.end(), x.begin());
+    system.forward_solve(x.data(), stride, columns, team);
+  });
+  const auto backward = alternate_medians(repeats, teams, [&](int team) {
+    std::copy(b.begin(), b.end(), x.begin());
+    system.backward_solve(x.data(), stride, 3, team);
+  });
+  const auto copy = alternate_medians(repeats, teams, [&](int) { std::copy(b.begin(), b.end(), x.begin()); });
+  for (size_t t = 0; t < teams.size(); ++t) {
+    const double forward_ms = forward[t] - copy[t], backward_ms = backward[t] - copy[t];
+    std::printf("%-9s %5d | %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %9.2f\n", name.c_str(), teams[t], factor[t],
+                evaluate[t], forward_ms, backward_ms, evaluate[t] - forward_ms - backward_ms, second_order[t],
+                evaluate[t] + second_order[t]);
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string data = "../shared/data";
+  int repeats = 9;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i];
+    if (key == "--data") data = argv[i + 1];
+    else if (key == "--repeats") repeats = std::max(1, std::atoi(argv[i + 1]));
+    else if (key != "--samples") std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
+  }
+  const std::vector<int> teams = {1, meshik::thread_count(0)};
+  std::printf("One Gauss-Newton iteration by phase (median of %d runs, ms), nonlinear space, 16 handles,\n"
+              "on 1 thread and on all %d cores, alternately:\n\n",
+              repeats, teams[1]);
+  std::printf("%-9s %5s | %8s | %8s %8s %8s %8s | %8s | %9s\n", "Mesh", "Team", "factor", "evaluate", "forward",
+              "backward", "rest", "second", "iteration");
+  for (const auto& [name, folder] : {std::pair<const char*, const char*>{"Horse", "horse-poses"},
+                                     std::pair<const char*, const char*>{"Elephant", "elephant-poses"}}) {
+    const fs::path dir = fs::path(data) / folder;
+    if (!fs::exists(dir / "reference.obj")) {
+      std::printf("(skipping %s: %s not found)\n", name, (dir / "reference.obj").c_str());
+      continue;
+    }
+    time_phases(name, dir, repeats, teams);
+  }
+  return 0;
+}
