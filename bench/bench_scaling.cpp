@@ -9,7 +9,8 @@
 //   pose        one whole pose from the linear start to convergence,
 //   first       ExampleSet + Solver + pose: time to the first pose,
 //   peak RSS    the child's peak resident memory (also as it was after the ExampleSet), and the
-//               ExampleSet's own arrays per triangle (its symbolic analysis not counted).
+//               ExampleSet's own arrays per triangle (the system's pattern counted, the rest of
+//               its symbolic analysis not) and the features' per triangle and example.
 // In the same run, the same-sized normal matrix G'^T G' (4th vertices eliminated, handles
 // removed) is factored by MeshIK's sparse Cholesky and by CHOLMOD and Eigen (library_cholesky.h):
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
@@ -75,18 +76,18 @@ size_t bytes_of(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
-// Bytes of an ExampleSet's arrays (its symbolic analysis not included): all, and the part
-// that grows with the number of examples (the features).
+// Bytes of an ExampleSet's arrays (the system's pattern counted, the rest of its symbolic
+// analysis not): all, and the part that grows with the number of examples (the features).
 void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& per_example) {
   const meshik::ExampleFeatures& f = s.features;
-  per_example = static_cast<double>(bytes_of(f.nonlinear) + bytes_of(f.linear) + bytes_of(f.nonlinear_single));
+  const meshik::CscMatrix& pattern = s.system_analysis.analyzed_pattern();
+  per_example = static_cast<double>(bytes_of(f.nonlinear) + bytes_of(f.linear));
   all = per_example + static_cast<double>(
-      bytes_of(f.plane_basis) + bytes_of(f.plane_basis_single) + bytes_of(s.vertex_of_internal) +
-      bytes_of(s.internal_of_vertex) + bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
+      bytes_of(f.plane_basis) + bytes_of(s.vertex_of_internal) + bytes_of(s.internal_of_vertex) +
+      bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
       bytes_of(s.components.component_of_vertex) + bytes_of(s.frames.gradient) + bytes_of(s.frames.plane_basis) +
-      bytes_of(s.frames.frame_inverse) + bytes_of(s.normal_matrix.col_start) + bytes_of(s.normal_matrix.row_index) +
-      bytes_of(s.normal_matrix.values) + bytes_of(s.system_row_of_vertex) + bytes_of(s.system_lower.col_start) +
-      bytes_of(s.system_lower.row_index) + bytes_of(s.system_lower.values));
+      bytes_of(s.frames.frame_inverse) + bytes_of(s.system_row_of_vertex) + bytes_of(pattern.col_start) +
+      bytes_of(pattern.row_index) + bytes_of(s.system_values));
 }
 
 // What one child measures (sent to the parent through a pipe as raw bytes).

@@ -102,26 +102,33 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
-  const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   clock.lap("topology and frames");
+  compute_centroids(impl, example_pointers);
+  clock.lap("centroids");
   if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
   // Only the in-plane gradients are read after this: the plane bases live on in the features
   // (a second copy), the inverse frames nowhere (120 bytes per triangle).
   impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
   impl.frames.frame_inverse = std::vector<double>();
+  // Nor the examples (their copies in the internal order) or the adjacency: freed before the
+  // analysis.
+  example_pointers.clear();
+  internal_examples = std::vector<std::vector<double>>();
+  adjacency = TriangleAdjacency();
   clock.lap("features");
-  impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
   int system_rows = 0;
   for (int v = 0; v < rest.num_vertices; ++v)
     if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
-  impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
+  CscMatrix lower = restricted_lower(eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices),
+                                     impl.system_row_of_vertex, system_rows);
   clock.lap("normal matrix");
-  if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
+  // The analysis keeps the pattern: only the values are kept here.
+  if (system_rows > 0) impl.system_analysis.analyze(lower);
+  impl.system_values = std::move(lower.values);
   clock.lap("analysis");
-  compute_centroids(impl, example_pointers);
-  clock.lap("centroids");
 }
 
 ExampleSet::~ExampleSet() = default;

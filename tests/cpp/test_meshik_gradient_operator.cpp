@@ -1,7 +1,8 @@
 // The deformation-gradient operator G with the fourth vertices kept, and its exact elimination:
 // T U equals the in-plane gradient of the corners, the eliminated matrix is the Schur complement
 // of G^T G, and posing with the fourth vertices kept or eliminated gives the same vertices and
-// the same energy.
+// the same energy; the pose system's handle coupling, read from K's lower triangle, is K's handle
+// columns entry for entry.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -9,7 +10,9 @@
 
 #include <Eigen/Dense>
 
+#include "example_set_impl.h"
 #include "gradient_operator.h"
+#include "pose_system.h"
 #include "test_meshik_support.h"
 #include "triangle_frames.h"
 
@@ -134,6 +137,35 @@ TEST_F(GradientOperator, KeptAndEliminatedFormsGiveTheSamePoseAndEnergy) {
   }
   EXPECT_NEAR(kept_energy, eliminated.residual, 1e-9 * kept_energy);
   EXPECT_GT(kept_energy, 1e-3);
+}
+
+TEST_F(GradientOperator, HandleCouplingIsTheFullMatrixsHandleColumns) {
+  const meshik::ExampleSet set(meshes_.view(), meshes_.example_pointers());
+  const meshik::ExampleSet::Impl& impl = set.impl();
+  // K on the internal vertices, both triangles stored, built as before the lower triangle alone
+  // was kept.
+  const meshik::CscMatrix k =
+      meshik::eliminated_normal_matrix(impl.frames, impl.triangles.data(), impl.num_vertices);
+  std::vector<int> handles;
+  for (int h : meshik_test::farthest_point_handles(meshes_.rest, 5)) handles.push_back(impl.internal_of_vertex[h]);
+  const meshik::PoseSystem system(impl, handles);
+  ASSERT_EQ(system.coupling_start().size(), handles.size() + 1);
+  for (size_t h = 0; h < handles.size(); ++h) {
+    std::vector<int> rows;
+    std::vector<double> values;
+    for (int s = k.col_start[handles[h]]; s < k.col_start[handles[h] + 1]; ++s)
+      if (system.unknown_of_vertex()[k.row_index[s]] >= 0) {
+        rows.push_back(system.unknown_of_vertex()[k.row_index[s]]);
+        values.push_back(k.values[s]);
+      }
+    const auto begin = system.coupling_start()[h], end = system.coupling_start()[h + 1];
+    EXPECT_EQ(std::vector<int>(system.coupling_row().begin() + begin, system.coupling_row().begin() + end), rows)
+        << "handle " << h;
+    EXPECT_EQ(std::vector<double>(system.coupling_value().begin() + begin, system.coupling_value().begin() + end),
+              values)
+        << "handle " << h;
+    EXPECT_FALSE(rows.empty());
+  }
 }
 
 }  // namespace

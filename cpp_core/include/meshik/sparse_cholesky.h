@@ -60,6 +60,11 @@ class SparseCholesky {
   // std::invalid_argument). Throws NotPositiveDefinite naming the (original) column whose pivot
   // is not positive; solve() is then unavailable until a factorization succeeds.
   void factorize(const CscMatrix& a);
+  // factorize() for the matrix of the analysed pattern with these values (one per entry of
+  // analyzed_pattern(), in its order): the pattern is neither given again nor compared, so a
+  // caller that keeps only the values stores the pattern once. Throws std::invalid_argument for
+  // a wrong count, else as factorize().
+  void factorize_values(const std::vector<double>& values);
   // analyze() then factorize().
   void compute(const CscMatrix& a);
 
@@ -97,6 +102,9 @@ class SparseCholesky {
 
   int size() const;
   long long factor_nonzeros() const;  // nnz(L), diagonal included
+  // The pattern given to analyze() (rows, cols, col_start, row_index; values empty), shared by
+  // every SparseCholesky analysed like this one; an empty matrix before analyze().
+  const CscMatrix& analyzed_pattern() const;
 
  private:
   struct Impl;
