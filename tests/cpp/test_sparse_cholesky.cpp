@@ -305,6 +305,19 @@ TEST(SparseCholesky, ValuesOnTheAnalysedPatternFactorLikeTheMatrix) {
   EXPECT_EQ(x, y);
   std::vector<double> short_values(b.values.begin(), b.values.end() - 1);
   EXPECT_THROW(by_values.factorize_values(short_values), std::invalid_argument);
+
+  // A pattern without values is analysed as the matrix.
+  CscMatrix pattern_only = a;
+  pattern_only.values.clear();
+  SparseCholesky by_pattern;
+  by_pattern.analyze(pattern_only);
+  EXPECT_EQ(by_pattern.permutation(), by_matrix.permutation());
+  by_pattern.factorize_values(b.values);
+  std::vector<double> z = rhs;
+  by_pattern.solve(z.data(), nrhs);
+  EXPECT_EQ(z, x);
+  pattern_only.values.assign(3, 1.0);  // neither none nor one per entry
+  EXPECT_THROW(by_pattern.analyze(pattern_only), std::invalid_argument);
 }
 
 TEST(SparseCholesky, InOrderHalvesMatchSolveAndGiveProductsWithTheInverse) {

@@ -48,9 +48,9 @@ class SparseCholesky {
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
   // Ordering, elimination tree, column counts and the factor's structure for the pattern of
-  // the n x n lower triangle `a`. Values are not read. Throws std::invalid_argument naming the
-  // column or entry when `a` is malformed (not square, indices unsorted / repeated / out of
-  // range, a diagonal entry missing, sizes inconsistent).
+  // the n x n lower triangle `a`. Values are not read (`a` may have none). Throws
+  // std::invalid_argument naming the column or entry when `a` is malformed (not square, indices
+  // unsorted / repeated / out of range, a diagonal entry missing, sizes inconsistent).
   void analyze(const CscMatrix& a);
   // Takes `other`'s analysis (shared, not copied; other must have one, else std::logic_error)
   // for matrices of its pattern: many factorizations of one pattern (a mesh's system for
