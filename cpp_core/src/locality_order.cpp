@@ -6,6 +6,21 @@
 
 namespace meshik {
 
+namespace {
+
+// The indices 0..key.size()-1 sorted by key (each in [0, num_keys)), ties in index order: a
+// counting sort (std::stable_sort's result, in linear time).
+std::vector<int> stable_order_by_key(const std::vector<int>& key, int num_keys) {
+  std::vector<int> start(num_keys + 1, 0);
+  for (int k : key) ++start[k + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> order(key.size());
+  for (size_t i = 0; i < key.size(); ++i) order[start[key[i]]++] = static_cast<int>(i);
+  return order;
+}
+
+}  // namespace
+
 LocalityOrder locality_order(const int* triangles, int num_triangles, int num_vertices) {
   // Vertex neighbours through triangle edges, in compressed rows (duplicates are harmless).
   std::vector<int> start(num_vertices + 1, 0);
@@ -23,11 +38,10 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
   LocalityOrder order;
   order.internal_of_vertex.assign(num_vertices, -1);
   order.vertex_of_internal.reserve(num_vertices);
-  std::vector<int> by_degree(num_vertices);
-  std::iota(by_degree.begin(), by_degree.end(), 0);
-  std::stable_sort(by_degree.begin(), by_degree.end(), [&](int a, int b) {
-    return start[a + 1] - start[a] < start[b + 1] - start[b];
-  });
+  std::vector<int> degree(num_vertices);
+  for (int v = 0; v < num_vertices; ++v) degree[v] = start[v + 1] - start[v];
+  const int max_degree = num_vertices > 0 ? *std::max_element(degree.begin(), degree.end()) : 0;
+  const std::vector<int> by_degree = stable_order_by_key(degree, max_degree + 1);
   auto visit = [&](int v) {
     order.internal_of_vertex[v] = static_cast<int>(order.vertex_of_internal.size());
     order.vertex_of_internal.push_back(v);
@@ -50,10 +64,7 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
     smallest[j] = std::min({order.internal_of_vertex[triangles[3 * j]],
                             order.internal_of_vertex[triangles[3 * j + 1]],
                             order.internal_of_vertex[triangles[3 * j + 2]]});
-  order.triangle_order.resize(num_triangles);
-  std::iota(order.triangle_order.begin(), order.triangle_order.end(), 0);
-  std::stable_sort(order.triangle_order.begin(), order.triangle_order.end(),
-                   [&](int a, int b) { return smallest[a] < smallest[b]; });
+  order.triangle_order = stable_order_by_key(smallest, num_vertices);
   return order;
 }
 
