@@ -110,26 +110,21 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
   const CscMatrix pattern =
       eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
-  clock.lap("system pattern");
-  // The frames, the adjacency and the centroids do not depend on the system's analysis (ordering
-  // and symbolic factorization: serial, about 0.6 s at 1M triangles): with more than one thread
-  // they are computed on a second thread meanwhile. Each side writes its own members; the future
-  // is waited for below (or, should the analysis throw, by its destructor, before the locals go).
-  TriangleAdjacency adjacency;
-  const auto geometry = [&impl, &adjacency, &example_pointers, triangles, &rest] {
-    impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
-    adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
-    compute_centroids(impl, example_pointers);
+  // The analysis (ordering and symbolic factorization: serial, about 0.6 s at 1M triangles) needs
+  // the pattern only: with more than one thread it runs on its own beside the frames and the
+  // features. It writes system_analysis alone, and is waited for below (or, should anything throw
+  // first, by the future's destructor, before `pattern` goes).
+  const auto analyze = [&impl, &pattern] {
+    if (pattern.rows > 0) impl.system_analysis.analyze(pattern);
   };
-  std::future<void> beside;
-  if (thread_count(threads) > 1)
-    beside = std::async(std::launch::async, geometry);
-  else
-    geometry();
-  if (system_rows > 0) impl.system_analysis.analyze(pattern);
-  clock.lap("analysis");
-  if (beside.valid()) beside.get();
-  clock.lap("topology, frames and centroids");  // with more than one thread: the wait for them
+  std::future<void> analysis;
+  if (thread_count(threads) > 1) analysis = std::async(std::launch::async, analyze);
+  clock.lap("system pattern");
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
+  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  clock.lap("topology and frames");
+  compute_centroids(impl, example_pointers);
+  clock.lap("centroids");
   impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
   // Only the in-plane gradients are read after this: the plane bases live on in the features,
   // the inverse frames nowhere (120 bytes per triangle).
@@ -143,6 +138,11 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   // Only the values are kept here: the analysis holds the pattern.
   impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern);
   clock.lap("normal matrix");
+  if (analysis.valid())
+    analysis.get();
+  else
+    analyze();
+  clock.lap("analysis");  // with more than one thread: the wait for it
 }
 
 ExampleSet::~ExampleSet() = default;
