@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "example_set_impl.h"
 
@@ -10,34 +11,33 @@ namespace meshik {
 
 namespace {
 
-// K_fh by handle from the lower triangle of K (pattern `lower` on the system's rows, `values` one
-// per entry; the handles' rows not yet made identity): handle h's column of K is its row left of
-// the diagonal (one entry in each earlier column) followed by its own column below it, so one pass
-// over the columns lists each handle's free rows in increasing order. handle_of_row: the handle
-// at each row, or -1. Fills row (the free rows) and value (K's entries there), and returns
-// num_handles + 1 offsets into them.
-std::vector<int> handle_coupling_from_lower(const CscMatrix& lower, const std::vector<double>& values,
-                                            const std::vector<int>& handle_of_row, int num_handles,
-                                            std::vector<int>& row, std::vector<double>& value) {
-  std::vector<int> start(num_handles + 1, 0);
-  for (int col = 0; col < lower.cols; ++col)
-    for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
-      const int h_row = handle_of_row[lower.row_index[s]], h_col = handle_of_row[col];
-      if ((h_row >= 0) != (h_col >= 0)) ++start[(h_row >= 0 ? h_row : h_col) + 1];
-    }
-  for (int h = 0; h < num_handles; ++h) start[h + 1] += start[h];
-  row.resize(start[num_handles]);
-  value.resize(start[num_handles]);
-  std::vector<int> next(start.begin(), start.end() - 1);
+// Takes the handles out of the lower triangle of K (pattern `lower` on the system's rows, its
+// values in `values`): their rows and columns become identity in `values`, and what they held off
+// the diagonal is K_fh. Handle h's column of K is its row left of the diagonal (one entry in each
+// earlier column) followed by its own column below it, so one pass over the columns lists each
+// handle's free rows in increasing order. handle_of_row: the handle at each row, or -1.
+// Fills row (the free rows) and value (K's entries there), and returns num_handles + 1 offsets
+// into them.
+std::vector<int> take_out_handles(const CscMatrix& lower, std::vector<double>& values,
+                                  const std::vector<int>& handle_of_row, int num_handles, std::vector<int>& row,
+                                  std::vector<double>& value) {
+  std::vector<std::vector<std::pair<int, double>>> coupled(num_handles);
   for (int col = 0; col < lower.cols; ++col)
     for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
       const int r = lower.row_index[s];
       const int h_row = handle_of_row[r], h_col = handle_of_row[col];
-      if ((h_row >= 0) == (h_col >= 0)) continue;
-      const int slot = next[h_row >= 0 ? h_row : h_col]++;
-      row[slot] = h_row >= 0 ? col : r;
-      value[slot] = values[s];
+      if (h_row < 0 && h_col < 0) continue;
+      if (h_row < 0 || h_col < 0) coupled[h_row >= 0 ? h_row : h_col].emplace_back(h_row >= 0 ? col : r, values[s]);
+      values[s] = r == col ? 1.0 : 0.0;
     }
+  std::vector<int> start(1, 0);
+  for (const auto& entries : coupled) {
+    for (const auto& [r, v] : entries) {
+      row.push_back(r);
+      value.push_back(v);
+    }
+    start.push_back(static_cast<int>(row.size()));
+  }
   return start;
 }
 
@@ -56,14 +56,9 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   std::vector<int> handle_of_row(num_rows_, -1);
   for (size_t h = 0; h < handles.size(); ++h)
     if (unknown_of_vertex_[handles[h]] >= 0) handle_of_row[unknown_of_vertex_[handles[h]]] = static_cast<int>(h);
-  coupling_start_ = handle_coupling_from_lower(lower, set.system_values, handle_of_row,
-                                               static_cast<int>(handles.size()), coupling_row_, coupling_value_);
   std::vector<double> values = set.system_values;
-  for (int col = 0; col < num_rows_; ++col)
-    for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
-      const int row = lower.row_index[s];
-      if (handle_of_row[row] >= 0 || handle_of_row[col] >= 0) values[s] = row == col ? 1.0 : 0.0;
-    }
+  coupling_start_ = take_out_handles(lower, values, handle_of_row, static_cast<int>(handles.size()), coupling_row_,
+                                     coupling_value_);
   for (int v : handles) unknown_of_vertex_[v] = -1;
 
   handle_triangle_slot_.assign(set.num_triangles, -1);
