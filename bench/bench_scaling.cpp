@@ -8,8 +8,10 @@
 //   iteration   one Gauss-Newton iteration (median time between consecutive iteration reports),
 //   pose        one whole pose from the linear start to convergence,
 //   first       ExampleSet + Solver + pose: time to the first pose,
-//   peak RSS    the child's peak resident memory (also as it was after the ExampleSet), and the
-//               ExampleSet's own arrays per triangle (its symbolic analysis not counted).
+//   peak RSS    the child's peak resident memory (also as it was after the ExampleSet, and the
+//               resident memory before it: the program and its input meshes), and the
+//               ExampleSet's own arrays per triangle (the system's pattern counted, the rest of
+//               its symbolic analysis not) and the features' per triangle and example.
 // In the same run, the same-sized normal matrix G'^T G' (4th vertices eliminated, handles
 // removed) is factored by MeshIK's sparse Cholesky and by CHOLMOD and Eigen (library_cholesky.h):
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
@@ -70,29 +72,40 @@ double peak_rss_mb() {
   return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
 }
 
+// The resident memory now (MB; Linux: the second field of /proc/self/statm, in pages), or -1.
+double current_rss_mb() {
+  std::FILE* statm = std::fopen("/proc/self/statm", "r");
+  if (statm == nullptr) return -1.0;
+  long size = 0, resident = -1;
+  const bool read = std::fscanf(statm, "%ld %ld", &size, &resident) == 2;
+  std::fclose(statm);
+  return read ? resident * (sysconf(_SC_PAGESIZE) / 1048576.0) : -1.0;
+}
+
 template <typename T>
 size_t bytes_of(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
-// Bytes of an ExampleSet's arrays (its symbolic analysis not included): all, and the part
-// that grows with the number of examples (the features).
+// Bytes of an ExampleSet's arrays (the system's pattern counted, the rest of its symbolic
+// analysis not): all, and the part that grows with the number of examples (the features).
 void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& per_example) {
   const meshik::ExampleFeatures& f = s.features;
-  per_example = static_cast<double>(bytes_of(f.nonlinear) + bytes_of(f.linear) + bytes_of(f.nonlinear_single));
+  const meshik::CscMatrix& pattern = s.system_analysis.analyzed_pattern();
+  per_example = static_cast<double>(bytes_of(f.nonlinear) + bytes_of(f.linear));
   all = per_example + static_cast<double>(
-      bytes_of(f.plane_basis) + bytes_of(f.plane_basis_single) + bytes_of(s.vertex_of_internal) +
-      bytes_of(s.internal_of_vertex) + bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
+      bytes_of(f.plane_basis) + bytes_of(s.vertex_of_internal) + bytes_of(s.internal_of_vertex) +
+      bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
       bytes_of(s.components.component_of_vertex) + bytes_of(s.frames.gradient) + bytes_of(s.frames.plane_basis) +
-      bytes_of(s.frames.frame_inverse) + bytes_of(s.normal_matrix.col_start) + bytes_of(s.normal_matrix.row_index) +
-      bytes_of(s.normal_matrix.values) + bytes_of(s.system_row_of_vertex) + bytes_of(s.system_lower.col_start) +
-      bytes_of(s.system_lower.row_index) + bytes_of(s.system_lower.values));
+      bytes_of(s.frames.frame_inverse) + bytes_of(s.system_row_of_vertex) + bytes_of(pattern.col_start) +
+      bytes_of(pattern.row_index) + bytes_of(s.system_values));
 }
 
 // What one child measures (sent to the parent through a pipe as raw bytes).
 struct Measurement {
   int triangles = 0, iterations = 0;
   double example_set_ms = 0, solver_ms = 0, iteration_ms = -1, pose_ms = 0, peak_mb = 0, set_peak_mb = 0;
+  double input_mb = 0;  // resident before the ExampleSet: the program and the subdivided input meshes
   double set_bytes_per_triangle = 0, feature_bytes_per_triangle_example = 0;
   char phases[512] = {};
 };
@@ -105,6 +118,7 @@ Measurement measure(const PoseSet& base, int levels, int threads, int reps) {
   const meshik::MeshView view{set.rest.vertices.data(), set.rest.num_vertices(), set.rest.triangles.data(),
                               set.rest.num_triangles()};
   out.triangles = set.rest.num_triangles();
+  out.input_mb = current_rss_mb();
   auto start = std::chrono::steady_clock::now();
   const auto examples = std::make_shared<meshik::ExampleSet>(view, pointers, meshik::ProgressCallback{}, threads);
   out.example_set_ms = ms_since(start);
@@ -239,8 +253,8 @@ int main(int argc, char** argv) {
                   compared ? factor.fastest_ms : 0.0, compared ? factor.ours_ms / factor.fastest_ms : 0.0,
                   compared ? factor.fastest : "-");
       std::printf("%18s ExampleSet phases: %s%d iterations, features %.0f B per triangle and example, "
-                  "peak RSS after the ExampleSet %.0f MB\n", "", m.phases, m.iterations,
-                  m.feature_bytes_per_triangle_example, m.set_peak_mb);
+                  "peak RSS after the ExampleSet %.0f MB, before it %.0f MB (the input meshes)\n", "", m.phases,
+                  m.iterations, m.feature_bytes_per_triangle_example, m.set_peak_mb, m.input_mb);
       if (level == 3 && threads == 0) {
         char line[200];
         std::snprintf(line, sizeof line, "1.08M triangles, all cores: ExampleSet + Solver + first pose %.0f ms <= 3000: %s; "

@@ -1,6 +1,7 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numeric>
 
 #include "example_set_impl.h"
@@ -10,6 +11,7 @@
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -99,29 +101,48 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     example_pointers.push_back(internal_examples.back().data());
   }
   clock.lap("locality order");
+  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
-  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
-  const TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
-  clock.lap("topology and frames");
-  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
-  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
-  // Only the in-plane gradients are read after this: the plane bases live on in the features
-  // (a second copy), the inverse frames nowhere (120 bytes per triangle).
-  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
-  impl.frames.frame_inverse = std::vector<double>();
-  clock.lap("features");
-  impl.normal_matrix = eliminated_normal_matrix(impl.frames, triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
   int system_rows = 0;
   for (int v = 0; v < rest.num_vertices; ++v)
     if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
-  impl.system_lower = restricted_lower(impl.normal_matrix, impl.system_row_of_vertex, system_rows);
-  clock.lap("normal matrix");
-  if (system_rows > 0) impl.system_analysis.analyze(impl.system_lower);
-  clock.lap("analysis");
+  const CscMatrix pattern =
+      eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
+  // The analysis (ordering and symbolic factorization: serial, about 0.6 s at 1M triangles) needs
+  // the pattern only: with more than one thread it runs on its own beside the frames and the
+  // features. It writes system_analysis alone, and is waited for below (or, should anything throw
+  // first, by the future's destructor, before `pattern` goes).
+  const auto analyze = [&impl, &pattern] {
+    if (pattern.rows > 0) impl.system_analysis.analyze(pattern);
+  };
+  std::future<void> analysis;
+  if (thread_count(threads) > 1) analysis = std::async(std::launch::async, analyze);
+  clock.lap("system pattern");
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
+  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  clock.lap("topology and frames");
   compute_centroids(impl, example_pointers);
   clock.lap("centroids");
+  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
+  // Only the in-plane gradients are read after this: the plane bases live on in the features,
+  // the inverse frames nowhere (120 bytes per triangle).
+  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
+  impl.frames.frame_inverse = std::vector<double>();
+  // Nor the examples (their copies in the internal order) or the adjacency.
+  example_pointers.clear();
+  internal_examples = std::vector<std::vector<double>>();
+  adjacency = TriangleAdjacency();
+  clock.lap("features");
+  // Only the values are kept here: the analysis holds the pattern.
+  impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern);
+  clock.lap("normal matrix");
+  if (analysis.valid())
+    analysis.get();
+  else
+    analyze();
+  clock.lap("analysis");  // with more than one thread: the wait for it
 }
 
 ExampleSet::~ExampleSet() = default;

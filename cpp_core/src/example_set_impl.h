@@ -32,12 +32,13 @@ struct ExampleSet::Impl {
   VertexComponents components;
   TriangleFrames frames;  // the in-plane gradients only (plane bases and inverse frames released)
   ExampleFeatures features;
-  CscMatrix normal_matrix;  // K: #V by #V, both triangles (gradient_operator.h)
   // Every handle set's pose system (pose_system.h) has a row for each vertex used by triangles
-  // and the pattern of K there; built and analysed (ordering, symbolic factorization) once here:
+  // and the pattern of the lower triangle of K (gradient_operator.h) there; built and analysed
+  // (ordering, symbolic factorization) once here. K itself is kept only there (symmetric: the
+  // handles' columns are read from their rows and columns of the lower triangle).
   std::vector<int> system_row_of_vertex;  // #V: the vertex's row (increasing vertex order), or -1
-  CscMatrix system_lower;                 // the lower triangle of K on those rows
-  SparseCholesky system_analysis;         // system_lower's analysis, shared by every PoseSystem
+  SparseCholesky system_analysis;         // the triangle's analysis, its pattern (analyzed_pattern())
+  std::vector<double> system_values;      // the triangle's values, one per entry of that pattern
   // Per component c: the rest centroid (3) and each example's centroid minus it (#E by 3), so
   // that the linear blend's centroid is rest_centroid[c] + sum_i w_i centroid_shift[c][i].
   std::vector<double> rest_centroid;   // #components by 3

@@ -49,21 +49,6 @@ MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, i
 }
 static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
 
-// Per-batch blocks of `rows` rows of kLanes doubles (num_batches of them) as single-precision
-// blocks of pairs of batches (narrow_pair): rows of kCurvatureBatches kLanes, zero past the last
-// batch.
-std::vector<float> paired_single(const std::vector<double>& blocks, int num_batches, int rows) {
-  const size_t batch_size = static_cast<size_t>(rows) * kLanes;
-  const int pairs = (num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
-  std::vector<float> paired;
-  assign_on_huge_pages(paired, static_cast<size_t>(pairs) * kCurvatureBatches * batch_size, 0.0f);
-  for (int batch = 0; batch < num_batches; batch += kCurvatureBatches) {
-    const double* first = blocks.data() + batch * batch_size;
-    narrow_pair(first, batch + 1 < num_batches ? first + batch_size : nullptr, rows, paired.data() + batch * batch_size);
-  }
-  return paired;
-}
-
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
 // gradients, for every example, on `team` threads. Its working arrays (rotations, logs and edge
@@ -149,9 +134,6 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
 
   fill_example_blocks(frames, adjacency, triangles, examples, progress, consistent_branches, thread_count(threads),
                       features);
-  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
-  features.nonlinear_single = paired_single(features.nonlinear, features.num_batches, 9 * k);
-  features.plane_basis_single = paired_single(features.plane_basis, features.num_batches, 6);
   return features;
 }
 
@@ -395,19 +377,25 @@ void add_residual_curvature(const ExampleFeatures& features, const double* w, in
                             float* scratch, double* curvature_lanes) {
   constexpr int N = kCurvatureBatches * L;
   const int k = features.num_examples;
-  const int pair = batch / kCurvatureBatches;
-  const int pairs = (features.num_batches + kCurvatureBatches - 1) / kCurvatureBatches;
-  const float* feature = features.nonlinear_single.data() + static_cast<size_t>(pair) * k * 9 * N;
-  const float* basis = features.plane_basis_single.data() + static_cast<size_t>(pair) * 6 * N;
-  if (pair + kPrefetchDistance < pairs) {
-    prefetch_values(feature + kPrefetchDistance * k * 9 * N, static_cast<size_t>(k) * 9 * N);
-    prefetch_values(basis + kPrefetchDistance * 6 * N, 6 * N);
+  const bool has_second = batch + 1 < features.num_batches;
+  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
+  const double* batch_feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  const double* batch_basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
+  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches) {
+    prefetch_values(batch_feature + kCurvatureBatches * kPrefetchDistance * k * 9 * L,
+                    static_cast<size_t>(kCurvatureBatches) * k * 9 * L);
+    prefetch_values(batch_basis + kCurvatureBatches * kPrefetchDistance * 6 * L, kCurvatureBatches * 6 * L);
   }
-  // scratch: residual (6 rows), blend output ((#E + 1) 6 rows), curvature (#E #E rows).
+  // scratch: residual (6 rows), features (9 #E rows), plane basis (6 rows), blend output
+  // ((#E + 1) 6 rows), curvature (#E #E rows).
   float* narrow_residual = scratch;
-  float* out = narrow_residual + 6 * N;
+  float* feature = narrow_residual + 6 * N;
+  float* basis = feature + k * 9 * N;
+  float* out = basis + 6 * N;
   float* curvature = out + (k + 1) * 6 * N;
-  narrow_pair(residual, batch + 1 < features.num_batches ? residual + 6 * L : nullptr, 6, narrow_residual);
+  narrow_pair(residual, has_second ? residual + 6 * L : nullptr, 6, narrow_residual);
+  narrow_pair(batch_feature, has_second ? batch_feature + k * 9 * L : nullptr, 9 * k, feature);
+  narrow_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
   for (int e = 0; e < k * k * N; ++e) curvature[e] = 0.0f;
   BatchRotation<float, N> r;
   blend_nonlinear(feature, basis, w, k, out, r);

@@ -38,12 +38,6 @@ struct ExampleFeatures {
   std::vector<double> linear;
   // Batch b: 6 rows of kLanes, U_j (3 by 2 row-major): (b 6 + row) kLanes + lane.
   std::vector<double> plane_basis;
-  // nonlinear and plane_basis in single precision for add_residual_curvature, by pairs of
-  // batches (kCurvatureBatches): rows of 2 kLanes, batch 2 p's lanes then batch 2 p + 1's (zero
-  // past the last batch). Pair p, example i: ((p #E + i) 9 + row) 2 kLanes + lane; basis:
-  // (p 6 + row) 2 kLanes + lane.
-  std::vector<float> nonlinear_single;
-  std::vector<float> plane_basis_single;
 };
 
 // frames / adjacency / triangles (#F by 3): the rest mesh's; examples: #E pointers to #V by 3
@@ -68,7 +62,7 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
 // Floats of scratch add_residual_curvature needs.
 inline int curvature_scratch_size(int num_examples) {
   const int k = num_examples;
-  return (6 + 6 * (k + 1) + k * k) * kCurvatureBatches * kLanes;
+  return (6 + 9 * k + 6 + 6 * (k + 1) + k * k) * kCurvatureBatches * kLanes;
 }
 
 // Nonlinear space only: for the triangles of batches batch (even) and batch + 1 (the second only if it
@@ -77,11 +71,12 @@ inline int curvature_scratch_size(int num_examples) {
 // batch: the second-order term of the energy's Hessian that Gauss-Newton leaves out.
 // residual: R_j = Q_j(x) - F_j(w) of the two batches, 6 rows of kLanes each, the second batch's
 // after the first's (zero in padding lanes). scratch: curvature_scratch_size floats.
-// Computed in single precision from nonlinear_single: the term only shapes the step (the
-// trust-region model), never the energy, its gradient or the pose, so rounding at 1e-7 of its
-// size changes no result, while single precision doubles the lanes per instruction and halves
-// the features read (the pass is bound by that read; the elephant's second-order pass, alternating
-// runs against double precision: 4.9 -> 2.9 ms).
+// Computed in single precision: the two batches' features and plane bases are rounded to floats
+// in scratch first. The term only shapes the step (the trust-region model), never the energy, its
+// gradient or the pose, so rounding at 1e-7 of its size changes no result, while single precision
+// doubles the lanes per instruction. (A stored single-precision copy of the features would halve
+// the read too, but costs 36 bytes per triangle and example: 182 MB at 1.08M triangles and 4
+// examples, the largest duplicate of the ExampleSet.)
 void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
                             const double* residual, float* scratch, double* curvature_lanes);
 

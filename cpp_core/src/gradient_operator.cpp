@@ -26,78 +26,63 @@ std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, co
   return entries;
 }
 
-CscMatrix eliminated_normal_matrix(const TriangleFrames& frames, const int* triangles,
-                                   int num_vertices) {
-  const int m = frames.num_triangles;
-  // Candidate rows of column v: v itself and the other corners of every triangle around v.
-  std::vector<int> start(num_vertices + 1, 0);
-  for (int v = 0; v < num_vertices; ++v) start[v + 1] = 1;
-  for (int e = 0; e < 3 * m; ++e) start[triangles[e] + 1] += 2;
-  for (int v = 0; v < num_vertices; ++v) start[v + 1] += start[v];
-  std::vector<int> rows(start[num_vertices]);
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int v = 0; v < num_vertices; ++v) rows[fill[v]++] = v;
-  for (int j = 0; j < m; ++j) {
-    const int* t = triangles + 3 * j;
+CscMatrix eliminated_lower_pattern(const int* triangles, int num_triangles, const std::vector<int>& row_of_vertex,
+                                   int num_rows) {
+  // Candidate rows of column c: c itself and the larger rows of the other corners of every
+  // triangle around it (each edge twice inside the mesh).
+  std::vector<int> start(num_rows + 1, 0);
+  for (int c = 0; c < num_rows; ++c) start[c + 1] = 1;
+  for (int j = 0; j < num_triangles; ++j)
     for (int q = 0; q < 3; ++q) {
-      rows[fill[t[q]]++] = t[(q + 1) % 3];
-      rows[fill[t[q]]++] = t[(q + 2) % 3];
+      const int a = row_of_vertex[triangles[3 * j + q]], b = row_of_vertex[triangles[3 * j + (q + 1) % 3]];
+      ++start[std::min(a, b) + 1];
     }
-  }
+  for (int c = 0; c < num_rows; ++c) start[c + 1] += start[c];
+  std::vector<int> rows(start[num_rows]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int c = 0; c < num_rows; ++c) rows[fill[c]++] = c;
+  for (int j = 0; j < num_triangles; ++j)
+    for (int q = 0; q < 3; ++q) {
+      const int a = row_of_vertex[triangles[3 * j + q]], b = row_of_vertex[triangles[3 * j + (q + 1) % 3]];
+      rows[fill[std::min(a, b)]++] = std::max(a, b);
+    }
   // Sort and deduplicate each column, compacting in place.
-  CscMatrix k;
-  k.rows = k.cols = num_vertices;
-  k.col_start.assign(num_vertices + 1, 0);
+  CscMatrix pattern;
+  pattern.rows = pattern.cols = num_rows;
+  pattern.col_start.assign(num_rows + 1, 0);
   int out = 0;
-  for (int v = 0; v < num_vertices; ++v) {
-    std::sort(rows.begin() + start[v], rows.begin() + start[v + 1]);
+  for (int c = 0; c < num_rows; ++c) {
+    std::sort(rows.begin() + start[c], rows.begin() + start[c + 1]);
     const int first = out;
-    for (int s = start[v]; s < start[v + 1]; ++s)
+    for (int s = start[c]; s < start[c + 1]; ++s)
       if (out == first || rows[out - 1] != rows[s]) rows[out++] = rows[s];
-    k.col_start[v + 1] = out;
+    pattern.col_start[c + 1] = out;
   }
   rows.resize(out);
-  k.row_index = std::move(rows);
-  k.values.assign(out, 0.0);
+  pattern.row_index = std::move(rows);
+  return pattern;
+}
 
+std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const int* triangles,
+                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern) {
+  std::vector<double> values(pattern.row_index.size(), 0.0);
   // Per triangle and coordinate the energy is |sum_q x_q g_q - target|^2: add the Gram of g.
-  for (int j = 0; j < m; ++j) {
+  for (int j = 0; j < frames.num_triangles; ++j) {
     const int* t = triangles + 3 * j;
     const double* g = frames.gradient.data() + 6 * static_cast<size_t>(j);
     for (int p = 0; p < 3; ++p) {
-      const int col = t[p];
-      const auto begin = k.row_index.begin() + k.col_start[col];
-      const auto end = k.row_index.begin() + k.col_start[col + 1];
+      const int col = row_of_vertex[t[p]];
+      const auto begin = pattern.row_index.begin() + pattern.col_start[col];
+      const auto end = pattern.row_index.begin() + pattern.col_start[col + 1];
       for (int q = 0; q < 3; ++q) {
-        const auto at = std::lower_bound(begin, end, t[q]);
-        k.values[at - k.row_index.begin()] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
+        const int row = row_of_vertex[t[q]];
+        if (row < col) continue;
+        const auto at = std::lower_bound(begin, end, row);
+        values[at - pattern.row_index.begin()] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
       }
     }
   }
-  return k;
-}
-
-CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& row_of_vertex, int num_rows) {
-  // Increasing vertex order keeps row >= col for the lower triangle.
-  CscMatrix lower;
-  lower.rows = lower.cols = num_rows;
-  lower.col_start.reserve(num_rows + 1);
-  lower.row_index.reserve(k.row_index.size() / 2 + row_of_vertex.size());
-  lower.values.reserve(k.row_index.size() / 2 + row_of_vertex.size());
-  lower.col_start.push_back(0);
-  for (size_t v = 0; v < row_of_vertex.size(); ++v) {
-    const int col = row_of_vertex[v];
-    if (col < 0) continue;
-    for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
-      const int row = row_of_vertex[k.row_index[s]];
-      if (row >= col) {
-        lower.row_index.push_back(row);
-        lower.values.push_back(k.values[s]);
-      }
-    }
-    lower.col_start.push_back(static_cast<int>(lower.row_index.size()));
-  }
-  return lower;
+  return values;
 }
 
 }  // namespace meshik

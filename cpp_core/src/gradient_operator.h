@@ -27,13 +27,19 @@ struct MatrixEntry {
 std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, const int* triangles,
                                                 int num_vertices);
 
-// K = G^T G with the fourth vertices eliminated: #V by #V, both triangles stored, rows sorted in
-// each column, the diagonal always present (zero for a vertex used by no triangle).
-CscMatrix eliminated_normal_matrix(const TriangleFrames& frames, const int* triangles,
-                                   int num_vertices);
+// K = G^T G with the fourth vertices eliminated is #V by #V with the sparsity of the mesh's vertex
+// graph. Only its lower triangle on the vertices v with row_of_vertex[v] >= 0 is built (every
+// vertex of a triangle has one; they number the rows 0..num_rows-1 in increasing vertex order, so
+// row >= column there as in K): the pattern first, from the triangles alone (#F by 3 indices), then
+// the values on it.
+// Returns that pattern: num_rows square, rows sorted in each column, the diagonal always present,
+// values empty.
+CscMatrix eliminated_lower_pattern(const int* triangles, int num_triangles, const std::vector<int>& row_of_vertex,
+                                   int num_rows);
 
-// The lower triangle of K (as above, #V by #V) on the vertices v with row_of_vertex[v] >= 0,
-// which number them 0..num_rows-1 in increasing vertex order: num_rows square.
-CscMatrix restricted_lower(const CscMatrix& k, const std::vector<int>& row_of_vertex, int num_rows);
+// frames / triangles: the rest mesh's; row_of_vertex: as above; pattern: eliminated_lower_pattern's.
+// Returns K's values on the pattern (one per entry, in its order).
+std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const int* triangles,
+                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern);
 
 }  // namespace meshik

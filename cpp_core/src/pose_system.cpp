@@ -3,43 +3,63 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "example_set_impl.h"
 
 namespace meshik {
 
+namespace {
+
+// Takes the handles out of the lower triangle of K (pattern `lower` on the system's rows, its
+// values in `values`): their rows and columns become identity in `values`, and what they held off
+// the diagonal is K_fh. Handle h's column of K is its row left of the diagonal (one entry in each
+// earlier column) followed by its own column below it, so one pass over the columns lists each
+// handle's free rows in increasing order. handle_of_row: the handle at each row, or -1.
+// Fills row (the free rows) and value (K's entries there), and returns num_handles + 1 offsets
+// into them.
+std::vector<int> take_out_handles(const CscMatrix& lower, std::vector<double>& values,
+                                  const std::vector<int>& handle_of_row, int num_handles, std::vector<int>& row,
+                                  std::vector<double>& value) {
+  std::vector<std::vector<std::pair<int, double>>> coupled(num_handles);
+  for (int col = 0; col < lower.cols; ++col)
+    for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
+      const int r = lower.row_index[s];
+      const int h_row = handle_of_row[r], h_col = handle_of_row[col];
+      if (h_row < 0 && h_col < 0) continue;
+      if (h_row < 0 || h_col < 0) coupled[h_row >= 0 ? h_row : h_col].emplace_back(h_row >= 0 ? col : r, values[s]);
+      values[s] = r == col ? 1.0 : 0.0;
+    }
+  std::vector<int> start(1, 0);
+  for (const auto& entries : coupled) {
+    for (const auto& [r, v] : entries) {
+      row.push_back(r);
+      value.push_back(v);
+    }
+    start.push_back(static_cast<int>(row.size()));
+  }
+  return start;
+}
+
+}  // namespace
+
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
                        const ProgressCallback& progress, int team)
     : handles_(handles) {
   const int n = set.num_vertices;
-  const CscMatrix& k = set.normal_matrix;
   handle_of_vertex_.assign(n, -1);
   for (size_t h = 0; h < handles.size(); ++h) handle_of_vertex_[handles[h]] = static_cast<int>(h);
   unknown_of_vertex_ = set.system_row_of_vertex;
-  // K' and the handles' identity rows and columns, on the mesh's pattern.
-  CscMatrix lower = set.system_lower;
+  // K' and the handles' identity rows and columns: values on the mesh's pattern.
+  const CscMatrix& lower = set.system_analysis.analyzed_pattern();
   num_rows_ = lower.rows;
-  std::vector<char> handle_row(num_rows_, 0);
-  for (int v : handles)
-    if (unknown_of_vertex_[v] >= 0) handle_row[unknown_of_vertex_[v]] = 1;
-  for (int col = 0; col < num_rows_; ++col)
-    for (int s = lower.col_start[col]; s < lower.col_start[col + 1]; ++s) {
-      const int row = lower.row_index[s];
-      if (handle_row[row] || handle_row[col]) lower.values[s] = row == col ? 1.0 : 0.0;
-    }
+  std::vector<int> handle_of_row(num_rows_, -1);
+  for (size_t h = 0; h < handles.size(); ++h)
+    if (unknown_of_vertex_[handles[h]] >= 0) handle_of_row[unknown_of_vertex_[handles[h]]] = static_cast<int>(h);
+  std::vector<double> values = set.system_values;
+  coupling_start_ = take_out_handles(lower, values, handle_of_row, static_cast<int>(handles.size()), coupling_row_,
+                                     coupling_value_);
   for (int v : handles) unknown_of_vertex_[v] = -1;
-
-  // K_fh: the handles' columns restricted to the unknowns' rows.
-  coupling_start_.assign(1, 0);
-  for (int v : handles) {
-    for (int s = k.col_start[v]; s < k.col_start[v + 1]; ++s) {
-      const int row = unknown_of_vertex_[k.row_index[s]];
-      if (row < 0) continue;
-      coupling_row_.push_back(row);
-      coupling_value_.push_back(k.values[s]);
-    }
-    coupling_start_.push_back(static_cast<int>(coupling_row_.size()));
-  }
 
   handle_triangle_slot_.assign(set.num_triangles, -1);
   for (int j = 0; j < set.num_triangles; ++j) {
@@ -55,7 +75,7 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   try {
     if (num_rows_ > 0) {
       factor_.share_analysis(set.system_analysis);
-      factor_.factorize(lower, team);
+      factor_.factorize_values(values, team);
     }
   } catch (const NotPositiveDefinite& e) {
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +

@@ -1,7 +1,8 @@
 // The deformation-gradient operator G with the fourth vertices kept, and its exact elimination:
 // T U equals the in-plane gradient of the corners, the eliminated matrix is the Schur complement
 // of G^T G, and posing with the fourth vertices kept or eliminated gives the same vertices and
-// the same energy.
+// the same energy; the pose system's handle coupling, read from K's lower triangle, is K's handle
+// columns entry for entry.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -9,7 +10,9 @@
 
 #include <Eigen/Dense>
 
+#include "example_set_impl.h"
 #include "gradient_operator.h"
+#include "pose_system.h"
 #include "test_meshik_support.h"
 #include "triangle_frames.h"
 
@@ -24,6 +27,23 @@ Eigen::MatrixXd dense_kept_operator(const ExampleMeshes& meshes, const meshik::T
   for (const meshik::MatrixEntry& e : meshik::kept_gradient_operator(frames, meshes.triangles.data(), n))
     g(e.row, e.col) += e.value;
   return g;
+}
+
+// K (#V by #V, every vertex used by a triangle) as a dense symmetric matrix, from its lower
+// triangle's pattern and values.
+Eigen::MatrixXd dense_eliminated_matrix(const std::vector<int>& triangles, const meshik::TriangleFrames& frames,
+                                        int n) {
+  std::vector<int> row_of_vertex(n);
+  for (int v = 0; v < n; ++v) row_of_vertex[v] = v;
+  const int m = static_cast<int>(triangles.size()) / 3;
+  const meshik::CscMatrix pattern = meshik::eliminated_lower_pattern(triangles.data(), m, row_of_vertex, n);
+  const std::vector<double> values =
+      meshik::eliminated_lower_values(frames, triangles.data(), row_of_vertex, pattern);
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  for (int col = 0; col < n; ++col)
+    for (int s = pattern.col_start[col]; s < pattern.col_start[col + 1]; ++s)
+      k(pattern.row_index[s], col) = k(col, pattern.row_index[s]) = values[s];
+  return k;
 }
 
 class GradientOperator : public ::testing::Test {
@@ -82,10 +102,7 @@ TEST_F(GradientOperator, EliminatedMatrixIsTheSchurComplementOfTheFourthVertices
   const Eigen::MatrixXd schur = a.topLeftCorner(n, n) - a.topRightCorner(n, m) *
                                                             fourth.diagonal().cwiseInverse().asDiagonal() *
                                                             a.bottomLeftCorner(m, n);
-  const meshik::CscMatrix k = meshik::eliminated_normal_matrix(frames_, meshes_.triangles.data(), n);
-  Eigen::MatrixXd dense_k = Eigen::MatrixXd::Zero(n, n);
-  for (int col = 0; col < n; ++col)
-    for (int s = k.col_start[col]; s < k.col_start[col + 1]; ++s) dense_k(k.row_index[s], col) = k.values[s];
+  const Eigen::MatrixXd dense_k = dense_eliminated_matrix(meshes_.triangles, frames_, n);
   EXPECT_LT((dense_k - schur).cwiseAbs().maxCoeff(), 1e-10 * schur.cwiseAbs().maxCoeff());
 }
 
@@ -134,6 +151,41 @@ TEST_F(GradientOperator, KeptAndEliminatedFormsGiveTheSamePoseAndEnergy) {
   }
   EXPECT_NEAR(kept_energy, eliminated.residual, 1e-9 * kept_energy);
   EXPECT_GT(kept_energy, 1e-3);
+}
+
+TEST_F(GradientOperator, HandleCouplingIsTheMatrixsHandleColumns) {
+  const meshik::ExampleSet set(meshes_.view(), meshes_.example_pointers());
+  const meshik::ExampleSet::Impl& impl = set.impl();
+  const int n = impl.num_vertices;
+  // K on the internal vertices (all used by triangles here), both triangles.
+  const Eigen::MatrixXd k = dense_eliminated_matrix(impl.triangles, impl.frames, n);
+  std::vector<int> handles;
+  for (int h : meshik_test::farthest_point_handles(meshes_.rest, 5)) handles.push_back(impl.internal_of_vertex[h]);
+  const meshik::PoseSystem system(impl, handles);
+  ASSERT_EQ(system.coupling_start().size(), handles.size() + 1);
+  for (size_t h = 0; h < handles.size(); ++h) {
+    // The handle's column of K on the free vertices (its neighbours in the mesh), in increasing
+    // vertex order.
+    std::vector<char> neighbour(n, 0);
+    for (size_t c = 0; c < impl.triangles.size(); c += 3)
+      for (int q = 0; q < 3; ++q)
+        if (impl.triangles[c + q] == handles[h]) neighbour[impl.triangles[c + (q + 1) % 3]] =
+                                                     neighbour[impl.triangles[c + (q + 2) % 3]] = 1;
+    std::vector<int> rows;
+    std::vector<double> values;
+    for (int v = 0; v < n; ++v)
+      if (neighbour[v] && system.unknown_of_vertex()[v] >= 0) {
+        rows.push_back(system.unknown_of_vertex()[v]);
+        values.push_back(k(v, handles[h]));
+      }
+    const auto begin = system.coupling_start()[h], end = system.coupling_start()[h + 1];
+    EXPECT_EQ(std::vector<int>(system.coupling_row().begin() + begin, system.coupling_row().begin() + end), rows)
+        << "handle " << h;
+    EXPECT_EQ(std::vector<double>(system.coupling_value().begin() + begin, system.coupling_value().begin() + end),
+              values)
+        << "handle " << h;
+    EXPECT_FALSE(rows.empty());
+  }
 }
 
 }  // namespace

@@ -139,7 +139,7 @@ TEST_P(TubeSolver, AnyThreadCountGivesTheSameBits) {
   // its factorization and its solves over several subtrees of the elimination tree.
   const ExampleMeshes meshes = meshik_test::make_tube_examples(121, 40);
   const auto set = std::make_shared<ExampleSet>(meshes.view(), meshes.example_pointers());
-  const auto analysis = meshik::sparse::analyze_pattern(set->impl().system_lower);
+  const auto analysis = meshik::sparse::analyze_pattern(set->impl().system_analysis.analyzed_pattern());
   ASSERT_GE(meshik::sparse::subtree_schedule(analysis.symbolic, 2).root.size(), 2u);
   const std::vector<int> handles = meshik_test::farthest_point_handles(meshes.rest, 8);
   const std::vector<double> targets = unreachable_targets(meshes, handles);

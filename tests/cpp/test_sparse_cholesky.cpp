@@ -281,6 +281,45 @@ TEST(SparseCholesky, FactorizeRejectsAnotherPattern) {
   EXPECT_THROW(chol.factorize(lower_from_dense(random_spd(25, 0.3, 1))), std::invalid_argument);
 }
 
+TEST(SparseCholesky, ValuesOnTheAnalysedPatternFactorLikeTheMatrix) {
+  const CscMatrix a = grid_laplacian(8, 6, 0.5);
+  const CscMatrix b = grid_laplacian(8, 6, 3.0);  // same pattern, other values
+  SparseCholesky by_matrix, by_values;
+  EXPECT_EQ(by_values.analyzed_pattern().rows, 0);
+  EXPECT_THROW(by_values.factorize_values(b.values), std::logic_error);  // no analysis yet
+  by_matrix.analyze(a);
+  by_values.share_analysis(by_matrix);
+  const CscMatrix& pattern = by_values.analyzed_pattern();
+  EXPECT_EQ(pattern.rows, a.rows);
+  EXPECT_EQ(pattern.cols, a.cols);
+  EXPECT_EQ(pattern.col_start, a.col_start);
+  EXPECT_EQ(pattern.row_index, a.row_index);
+  EXPECT_TRUE(pattern.values.empty());
+  by_matrix.factorize(b);
+  by_values.factorize_values(b.values);
+  const int nrhs = 3;
+  const std::vector<double> rhs = random_values(static_cast<size_t>(a.rows) * nrhs, 8);
+  std::vector<double> x = rhs, y = rhs;
+  by_matrix.solve(x.data(), nrhs);
+  by_values.solve(y.data(), nrhs);
+  EXPECT_EQ(x, y);
+  std::vector<double> short_values(b.values.begin(), b.values.end() - 1);
+  EXPECT_THROW(by_values.factorize_values(short_values), std::invalid_argument);
+
+  // A pattern without values is analysed as the matrix.
+  CscMatrix pattern_only = a;
+  pattern_only.values.clear();
+  SparseCholesky by_pattern;
+  by_pattern.analyze(pattern_only);
+  EXPECT_EQ(by_pattern.permutation(), by_matrix.permutation());
+  by_pattern.factorize_values(b.values);
+  std::vector<double> z = rhs;
+  by_pattern.solve(z.data(), nrhs);
+  EXPECT_EQ(z, x);
+  pattern_only.values.assign(3, 1.0);  // neither none nor one per entry
+  EXPECT_THROW(by_pattern.analyze(pattern_only), std::invalid_argument);
+}
+
 TEST(SparseCholesky, InOrderHalvesMatchSolveAndGiveProductsWithTheInverse) {
   const CscMatrix a = grid_laplacian(23, 19, 0.1);
   SparseCholesky chol;

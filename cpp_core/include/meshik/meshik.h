@@ -90,10 +90,11 @@ class ExampleSet {
   // rest:     the rest mesh (#V vertices, #F triangles)
   // examples: #E pointers, each to a #V by 3 row-major array (same vertex order and triangles as rest)
   // threads:  0 = all cores (OpenMP's default team, OMP_NUM_THREADS), n >= 1 = n threads for the
-  //           per-triangle passes; the result is the same bits for any count. Called from inside an
-  //           OpenMP parallel region it runs serially (no nested teams, no oversubscription); called
-  //           from several threads of the caller at once, each call has its own team: give each
-  //           threads = cores / callers.
+  //           per-triangle passes (with more than one, the serial analysis of the pose systems'
+  //           pattern runs beside them); the result is the same bits for any count. Called from
+  //           inside an OpenMP parallel region it runs serially (no nested teams, no
+  //           oversubscription); called from several threads of the caller at once, each call has
+  //           its own team: give each threads = cores / callers.
   // Throws InputError on any invalid element.
   // Precomputes what both feature spaces need (T_ij, and R_ij, log R_ij, S_ij).
   ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,

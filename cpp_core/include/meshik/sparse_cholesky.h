@@ -51,9 +51,9 @@ class SparseCholesky {
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
   // Ordering, elimination tree, column counts and the factor's structure for the pattern of
-  // the n x n lower triangle `a`. Values are not read. Throws std::invalid_argument naming the
-  // column or entry when `a` is malformed (not square, indices unsorted / repeated / out of
-  // range, a diagonal entry missing, sizes inconsistent).
+  // the n x n lower triangle `a`. Values are not read (`a` may have none). Throws
+  // std::invalid_argument naming the column or entry when `a` is malformed (not square, indices
+  // unsorted / repeated / out of range, a diagonal entry missing, sizes inconsistent).
   void analyze(const CscMatrix& a);
   // Takes `other`'s analysis (shared, not copied; other must have one, else std::logic_error)
   // for matrices of its pattern: many factorizations of one pattern (a mesh's system for
@@ -65,6 +65,11 @@ class SparseCholesky {
   // threads: 1 = serial, 0 = all cores, n = up to n threads, over independent subtrees of the
   // elimination tree; the factor (and any error) is the same bits for any count.
   void factorize(const CscMatrix& a, int threads = 1);
+  // factorize() for the matrix of the analysed pattern with these values (one per entry of
+  // analyzed_pattern(), in its order): the pattern is neither given again nor compared, so a
+  // caller that keeps only the values stores the pattern once. Throws std::invalid_argument for
+  // a wrong count, else as factorize().
+  void factorize_values(const std::vector<double>& values, int threads = 1);
   // analyze() then factorize().
   void compute(const CscMatrix& a);
 
@@ -103,6 +108,9 @@ class SparseCholesky {
 
   int size() const;
   long long factor_nonzeros() const;  // nnz(L), diagonal included
+  // The pattern given to analyze() (rows, cols, col_start, row_index; values empty), shared by
+  // every SparseCholesky analysed like this one; an empty matrix before analyze().
+  const CscMatrix& analyzed_pattern() const;
 
  private:
   struct Impl;

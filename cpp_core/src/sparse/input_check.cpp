@@ -43,7 +43,7 @@ void check_lower_input(const CscMatrix& a) {
   if (a.row_index.size() != static_cast<size_t>(a.col_start[a.cols]))
     fail("row_index has " + std::to_string(a.row_index.size()) + " entries, col_start ends at " +
          std::to_string(a.col_start[a.cols]));
-  if (a.values.size() != a.row_index.size())
+  if (!a.values.empty() && a.values.size() != a.row_index.size())
     fail("values has " + std::to_string(a.values.size()) + " entries, row_index has " +
          std::to_string(a.row_index.size()));
   for (int j = 0; j < a.cols; ++j) check_column(a, j);

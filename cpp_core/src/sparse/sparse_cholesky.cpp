@@ -21,11 +21,11 @@ using namespace sparse;
 
 namespace {
 
-// An analysed pattern (kept to check that factorize() gets the same one), its analysis and the
-// subtrees of the factorization and the backward solve, shared by every SparseCholesky analysed
-// like the one that made it.
+// An analysed pattern (values empty; kept to check that factorize() gets the same one), its
+// analysis and the subtrees of the factorization and the backward solve, shared by every
+// SparseCholesky analysed like the one that made it.
 struct AnalyzedPattern {
-  std::vector<int> col_start, row_index;
+  CscMatrix pattern;
   Analysis analysis;
   SubtreeSchedule schedule;
 };
@@ -75,8 +75,10 @@ void SparseCholesky::analyze(const CscMatrix& a) {
   analyzed->analysis = analyze_pattern(a);
   // Balanced for the cores (at least 2, also when analysed inside a parallel region).
   analyzed->schedule = subtree_schedule(analyzed->analysis.symbolic, std::max(2, thread_count(0)));
-  analyzed->col_start = a.col_start;
-  analyzed->row_index = a.row_index;
+  analyzed->pattern.rows = a.rows;
+  analyzed->pattern.cols = a.cols;
+  analyzed->pattern.col_start = a.col_start;
+  analyzed->pattern.row_index = a.row_index;
   impl_->reset(std::move(analyzed));
 }
 
@@ -88,14 +90,22 @@ void SparseCholesky::share_analysis(const SparseCholesky& other) {
 void SparseCholesky::factorize(const CscMatrix& a, int threads) {
   Impl& s = *impl_;
   if (!s.pattern) throw std::logic_error("SparseCholesky::factorize: no analyze() or share_analysis() first");
-  if (a.rows != a.cols || a.col_start != s.pattern->col_start || a.row_index != s.pattern->row_index)
+  if (a.rows != a.cols || a.col_start != s.pattern->pattern.col_start || a.row_index != s.pattern->pattern.row_index)
     throw std::invalid_argument(
         "SparseCholesky::factorize: the matrix pattern differs from the one given to analyze()");
-  if (a.values.size() != a.row_index.size())
-    throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(a.values.size()) +
-                                " entries, expected " + std::to_string(a.row_index.size()));
+  factorize_values(a.values, threads);
+}
+
+void SparseCholesky::factorize_values(const std::vector<double>& values, int threads) {
+  Impl& s = *impl_;
+  if (!s.pattern) throw std::logic_error("SparseCholesky::factorize: no analyze() or share_analysis() first");
+  if (values.size() != s.pattern->pattern.row_index.size())
+    throw std::invalid_argument("SparseCholesky::factorize: values has " + std::to_string(values.size()) +
+                                " entries, expected " + std::to_string(s.pattern->pattern.row_index.size()));
   s.factorized = false;
-  factorize_numeric(s.analysis(), a.values, s.factor, &s.pattern->schedule, thread_count(threads));
+  factorize_numeric(s.analysis(), values, s.factor, &s.pattern->schedule, thread_count(threads));
+  // The permuted copy of the values is work only: free it (8 bytes per entry of the lower triangle).
+  s.factor.lower_values = std::vector<double>();
   s.factorized = true;
 }
 
@@ -166,5 +176,10 @@ void SparseCholesky::backward_solve_rows_in_order(double* x, int stride, int col
 int SparseCholesky::size() const { return static_cast<int>(impl_->analysis().perm.size()); }
 
 long long SparseCholesky::factor_nonzeros() const { return impl_->analysis().factor_nonzeros; }
+
+const CscMatrix& SparseCholesky::analyzed_pattern() const {
+  static const CscMatrix kNone;
+  return impl_->pattern ? impl_->pattern->pattern : kNone;
+}
 
 }  // namespace meshik
