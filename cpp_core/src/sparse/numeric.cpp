@@ -236,10 +236,11 @@ int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int
 void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_values, FactorValues& factor,
                        const SubtreeSchedule* schedule, int team) {
   const std::vector<int>& source = analysis.lower.source;
-  factor.lower_values.resize(source.size());
-  for (size_t p = 0; p < source.size(); ++p) factor.lower_values[p] = a_values[source[p]];
-  eliminate_prefix(analysis.prefix, factor.lower_values, analysis.perm, factor.prefix_diagonal, factor.prefix_below);
-  factorize_supernodal(analysis.symbolic, analysis.lower.pattern, factor.lower_values.data(), analysis.perm,
+  // Work only: the permuted lower triangle's values, freed on return.
+  std::vector<double> lower_values(source.size());
+  for (size_t p = 0; p < source.size(); ++p) lower_values[p] = a_values[source[p]];
+  eliminate_prefix(analysis.prefix, lower_values, analysis.perm, factor.prefix_diagonal, factor.prefix_below);
+  factorize_supernodal(analysis.symbolic, analysis.lower.pattern, lower_values.data(), analysis.perm,
                        factor.supernodal, schedule, team);
 }
 

@@ -14,7 +14,6 @@ struct FactorValues {
   std::vector<double> prefix_diagonal;  // prefix.size: L(u, u) of the simplicial prefix
   std::vector<double> prefix_below;     // prefix.rows.size(): its entries below the diagonal
   std::vector<double> supernodal;       // symbolic.value_start.back(): the supernodes' blocks
-  std::vector<double> lower_values;     // work: the permuted lower triangle's values
 };
 
 // a_values: the values of the matrix analysed by `analysis` (same pattern). Fills `factor`.

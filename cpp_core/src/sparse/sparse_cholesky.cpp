@@ -104,8 +104,6 @@ void SparseCholesky::factorize_values(const std::vector<double>& values, int thr
                                 " entries, expected " + std::to_string(s.pattern->pattern.row_index.size()));
   s.factorized = false;
   factorize_numeric(s.analysis(), values, s.factor, &s.pattern->schedule, thread_count(threads));
-  // The permuted copy of the values is work only: free it (8 bytes per entry of the lower triangle).
-  s.factor.lower_values = std::vector<double>();
   s.factorized = true;
 }
 
