@@ -2,22 +2,21 @@
 
 namespace meshik::sparse {
 
-std::vector<int> elimination_tree(const Pattern& graph) {
-  const int n = graph.n;
+std::vector<int> elimination_tree(const PermutedView& graph) {
+  const int n = graph.size();
   std::vector<int> parent(n, -1);
   // ancestor[i]: a known ancestor of i (path-compressed), -1 when i is a root so far.
   std::vector<int> ancestor(n, -1);
-  for (int k = 0; k < n; ++k) {
-    for (int p = graph.col_start[k]; p < graph.col_start[k + 1]; ++p) {
+  for (int k = 0; k < n; ++k)
+    graph.for_each_neighbour(k, [&](int i) {
       // A(i, k) != 0 with i < k: k is an ancestor of i; climb to i's current root.
-      for (int i = graph.row_index[p]; i != -1 && i < k;) {
+      while (i != -1 && i < k) {
         const int next = ancestor[i];
         ancestor[i] = k;
         if (next == -1) parent[i] = k;
         i = next;
       }
-    }
-  }
+    });
   return parent;
 }
 

@@ -3,8 +3,11 @@
 #include <amd.h>
 
 #include <algorithm>
+#include <climits>
+#include <memory>
 #include <stdexcept>
-#include <string>
+
+#include "sparse/elimination_tree.h"
 
 namespace meshik::sparse {
 
@@ -15,6 +18,39 @@ bool adjacent(const Pattern& graph, int u, int v) {
   const auto begin = graph.row_index.begin() + graph.col_start[u];
   const auto end = graph.row_index.begin() + graph.col_start[u + 1];
   return std::binary_search(begin, end, v);
+}
+
+// graph: as in postordered_minimum_degree. Returns AMD's permutation (n entries, perm[k] the node
+// eliminated k-th) and writes its inverse to `inverse` (n entries).
+// amd_2 orders a graph given in a workspace that it overwrites. amd_order builds exactly this
+// input (sorted lists of the symmetric pattern, in node order) after checking and symmetrizing
+// the matrix, which the graph already is, so calling amd_2 directly skips that work. The
+// workspace's room beyond the lists only sets how often AMD compacts it, and compaction moves
+// lists without reordering them: the order is amd_order's (nnz/5 + n of room) with fewer
+// compactions (2 nnz + n of room measured 6% faster on the elephant).
+std::vector<int> amd_permutation(const Pattern& graph, std::vector<int>& inverse) {
+  const int n = graph.n;
+  std::vector<int> perm(n);
+  inverse.resize(n);
+  const size_t nnz = graph.row_index.size();
+  if (nnz == 0) {  // no edges: any order is free of fill (AMD needs at least one)
+    for (int v = 0; v < n; ++v) perm[v] = inverse[v] = v;
+    return perm;
+  }
+  if (nnz + n >= static_cast<size_t>(INT_MAX))
+    throw std::runtime_error("SparseCholesky: matrix too large for the AMD ordering");
+  const size_t room = std::min(2 * nnz + n, static_cast<size_t>(INT_MAX) - 1);
+  std::unique_ptr<int[]> workspace(new int[room]);
+  std::copy(graph.row_index.begin(), graph.row_index.end(), workspace.get());
+  std::vector<int> list_start(graph.col_start.begin(), graph.col_start.end() - 1), length(n);
+  for (int v = 0; v < n; ++v) length[v] = graph.col_start[v + 1] - graph.col_start[v];
+  std::vector<int> nv(n), head(n), elen(n), degree(n), w(n);
+  double control[AMD_CONTROL];
+  amd_defaults(control);
+  amd_2(n, list_start.data(), workspace.get(), length.data(), static_cast<int>(room), static_cast<int>(nnz),
+        nv.data(), inverse.data(), perm.data(), head.data(), elen.data(), degree.data(), w.data(), control,
+        nullptr);
+  return perm;
 }
 
 }  // namespace
@@ -32,19 +68,17 @@ std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree) {
   return nodes;
 }
 
-std::vector<int> minimum_degree_ordering(const Pattern& graph) {
-  std::vector<int> perm(graph.n);
-  if (graph.row_index.empty()) {  // no edges: any order is free of fill (AMD rejects it)
-    for (int v = 0; v < graph.n; ++v) perm[v] = v;
-    return perm;
-  }
-  double control[AMD_CONTROL];
-  amd_defaults(control);
-  const int status = amd_order(graph.n, graph.col_start.data(), graph.row_index.data(), perm.data(), control,
-                               nullptr);
-  if (status != AMD_OK && status != AMD_OK_BUT_JUMBLED)
-    throw std::runtime_error("SparseCholesky: AMD ordering failed with status " + std::to_string(status));
-  return perm;
+TreeOrder postordered_minimum_degree(const Pattern& graph) {
+  std::vector<int> order_inverse;
+  const std::vector<int> order = amd_permutation(graph, order_inverse);
+  const std::vector<int> order_parent = elimination_tree(PermutedView{graph, order, order_inverse});
+  const std::vector<int> post = tree_postorder(order_parent);
+  TreeOrder result;
+  result.perm.resize(graph.n);
+  for (int k = 0; k < graph.n; ++k) result.perm[k] = order[post[k]];
+  result.inverse = invert_permutation(result.perm);
+  result.parent = relabel_tree(order_parent, post);
+  return result;
 }
 
 std::vector<int> invert_permutation(const std::vector<int>& perm) {

@@ -31,33 +31,25 @@ Pattern adjacency_graph(const CscMatrix& a) {
   return g;
 }
 
-Pattern permuted_graph(const Pattern& graph, const std::vector<int>& perm, const std::vector<int>& inverse) {
-  Pattern g;
-  g.n = graph.n;
-  g.col_start.resize(graph.n + 1);
-  g.row_index.resize(graph.row_index.size());
-  int q = 0;
-  for (int k = 0; k < graph.n; ++k) {
-    g.col_start[k] = q;
-    const int v = perm[k];
-    for (int p = graph.col_start[v]; p < graph.col_start[v + 1]; ++p) g.row_index[q++] = inverse[graph.row_index[p]];
+void keep_induced_subgraph(Pattern& graph, const std::vector<int>& local) {
+  // Kept node v becomes t <= v and its list only shrinks, so writing entry q and offset t + 1
+  // never overtakes what is still to be read (v's old offsets are read before t + 1 <= v + 1 is
+  // written).
+  int kept = 0, q = 0, old_begin = 0;
+  for (int v = 0; v < graph.n; ++v) {
+    const int old_end = graph.col_start[v + 1];
+    if (local[v] >= 0) {
+      for (int p = old_begin; p < old_end; ++p) {
+        const int u = local[graph.row_index[p]];
+        if (u >= 0) graph.row_index[q++] = u;
+      }
+      graph.col_start[++kept] = q;
+    }
+    old_begin = old_end;
   }
-  g.col_start[graph.n] = q;
-  return g;
-}
-
-Pattern induced_subgraph(const Pattern& graph, const std::vector<int>& kept, const std::vector<int>& local) {
-  Pattern sub;
-  sub.n = static_cast<int>(kept.size());
-  sub.col_start.reserve(sub.n + 1);
-  sub.col_start.push_back(0);
-  sub.row_index.reserve(graph.row_index.size());
-  for (int v : kept) {
-    for (int p = graph.col_start[v]; p < graph.col_start[v + 1]; ++p)
-      if (local[graph.row_index[p]] >= 0) sub.row_index.push_back(local[graph.row_index[p]]);
-    sub.col_start.push_back(static_cast<int>(sub.row_index.size()));
-  }
-  return sub;
+  graph.n = kept;
+  graph.col_start.resize(kept + 1);
+  graph.row_index.resize(q);
 }
 
 }  // namespace meshik::sparse

@@ -1,4 +1,5 @@
-// The adjacency graph of a symmetric matrix and its view under a symmetric permutation.
+// The adjacency graph of a symmetric matrix, its subgraphs and its view under a symmetric
+// permutation.
 #pragma once
 
 #include <vector>
@@ -12,14 +13,30 @@ namespace meshik::sparse {
 // diagonal ignored): column v lists the u != v with A(u, v) != 0, increasing.
 Pattern adjacency_graph(const CscMatrix& a);
 
-// graph: an adjacency graph (n nodes); perm: n entries, perm[k] is the node that becomes k;
-// inverse: its inverse. Returns the adjacency of P A P^T: column k lists the neighbours of
-// perm[k] renamed by `inverse` (in no particular order).
-Pattern permuted_graph(const Pattern& graph, const std::vector<int>& perm, const std::vector<int>& inverse);
+// graph: an adjacency graph (n nodes, lists sorted); local[v]: the index node v keeps, or -1 to
+// drop it (kept nodes keep their relative order: local increases over them, from 0).
+// Replaces graph, in place, by the subgraph induced by the kept nodes (lists stay sorted).
+void keep_induced_subgraph(Pattern& graph, const std::vector<int>& local);
 
-// graph: an adjacency graph; kept: the nodes to keep, increasing; local[v]: v's index in
-// `kept`, or -1. Returns the subgraph induced by `kept` (node kept[t] becomes t; lists stay
-// sorted).
-Pattern induced_subgraph(const Pattern& graph, const std::vector<int>& kept, const std::vector<int>& local);
+// The adjacency of P A P^T seen through the graph of A, without a copy: node k of the view is
+// node perm[k] of `graph`, its neighbours renamed by `inverse` (inverse[perm[k]] = k).
+struct PermutedView {
+  const Pattern& graph;
+  const std::vector<int>& perm;
+  const std::vector<int>& inverse;
+
+  int size() const { return graph.n; }
+  // Calls visit(i) for each neighbour i of node k of the view, in no particular order. Asks
+  // the cache for node k + kAhead's list meanwhile: the lists lie in A's order, not the view's,
+  // and a pass over the view otherwise waits for each one.
+  template <class Visit>
+  void for_each_neighbour(int k, Visit&& visit) const {
+    constexpr int kAhead = 8;
+    if (k + kAhead < graph.n) __builtin_prefetch(graph.row_index.data() + graph.col_start[perm[k + kAhead]]);
+    const int v = perm[k];
+    const int end = graph.col_start[v + 1];
+    for (int p = graph.col_start[v]; p < end; ++p) visit(inverse[graph.row_index[p]]);
+  }
+};
 
 }  // namespace meshik::sparse
