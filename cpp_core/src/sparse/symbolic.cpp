@@ -51,14 +51,19 @@ void row_structures(const PermutedView& graph, const SupernodePartition& partiti
     for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) f.rows[p++] = j;
     next[s] = p;
   }
+  // The supernode of each node of the graph: one lookup per entry below, not two.
+  std::vector<int> node_supernode(f.n);
+  for (int k = 0; k < f.n; ++k) node_supernode[graph.perm[k]] = supernode_of[k];
   std::vector<int> mark(ns, -1);
+  const int* parent = f.parent.data();
+  int* rows = f.rows.data();
   for (int i = 0; i < f.n; ++i) {
     const int own = supernode_of[i];
-    graph.for_each_neighbour(i, [&](int j) {
-      if (j >= i) return;
-      for (int s = supernode_of[j]; s != own && mark[s] != i; s = f.parent[s]) {
+    // A neighbour j > i lies in own or a later supernode, j < i in own or an earlier one.
+    graph.for_each_neighbour(i, node_supernode, [&](int first) {
+      for (int s = first; s < own && mark[s] != i; s = parent[s]) {
         mark[s] = i;
-        f.rows[next[s]++] = i;
+        rows[next[s]++] = i;
       }
     });
   }

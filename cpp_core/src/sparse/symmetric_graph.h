@@ -26,16 +26,22 @@ struct PermutedView {
   const std::vector<int>& inverse;
 
   int size() const { return graph.n; }
-  // Calls visit(i) for each neighbour i of node k of the view, in no particular order. Asks
-  // the cache for node k + kAhead's list meanwhile: the lists lie in A's order, not the view's,
-  // and a pass over the view otherwise waits for each one.
+  // Calls visit(label[u]) for each neighbour u (numbered as in `graph`) of node k of the view,
+  // in no particular order; label: one entry per node of `graph`. Asks the cache for node
+  // k + kAhead's list meanwhile: the lists lie in A's order, not the view's, and a pass over the
+  // view otherwise waits for each one.
   template <class Visit>
-  void for_each_neighbour(int k, Visit&& visit) const {
+  void for_each_neighbour(int k, const std::vector<int>& label, Visit&& visit) const {
     constexpr int kAhead = 8;
     if (k + kAhead < graph.n) __builtin_prefetch(graph.row_index.data() + graph.col_start[perm[k + kAhead]]);
     const int v = perm[k];
     const int end = graph.col_start[v + 1];
-    for (int p = graph.col_start[v]; p < end; ++p) visit(inverse[graph.row_index[p]]);
+    for (int p = graph.col_start[v]; p < end; ++p) visit(label[graph.row_index[p]]);
+  }
+  // Calls visit(i) for each neighbour i of node k of the view, in no particular order.
+  template <class Visit>
+  void for_each_neighbour(int k, Visit&& visit) const {
+    for_each_neighbour(k, inverse, visit);
   }
 };
 
