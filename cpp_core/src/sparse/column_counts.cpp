@@ -36,15 +36,19 @@ std::vector<int> column_counts(const Pattern& lower, int first_column, const std
     ancestor[j] = j;
   }
   const int* rows = lower.row_index.data();
+  const int* column_start = lower.col_start.data() + first_column;
   for (int j = 0; j < n; ++j) {
     if (parent[j] != -1) --delta[parent[j]];
-    const int column = first_column + j;
-    for (int p = lower.col_start[column]; p < lower.col_start[column + 1]; ++p) {
+    // Row j's subtree is complete (its leaves are earlier columns): its max_first now makes the
+    // diagonal entry fail the leaf test below.
+    max_first[j] = j;
+    const int first_j = first[j];
+    for (int p = column_start[j]; p < column_start[j + 1]; ++p) {
       const int i = rows[p] - first_column;
       // j is a leaf of row subtree i iff A(i, j) != 0, i > j, and no earlier leaf of that
       // subtree lies inside j's subtree (first[j] > max_first[i]).
-      if (i <= j || first[j] <= max_first[i]) continue;
-      max_first[i] = first[j];
+      if (first_j <= max_first[i]) continue;
+      max_first[i] = first_j;
       const int prev = previous_leaf[i];
       previous_leaf[i] = j;
       ++delta[j];
