@@ -22,31 +22,21 @@ std::vector<int> elimination_tree(const PermutedView& graph) {
 
 std::vector<int> tree_postorder(const std::vector<int>& parent) {
   const int n = static_cast<int>(parent.size());
-  // Children lists: first_child / next_sibling, built backwards so they come out increasing.
-  std::vector<int> first_child(n, -1), next_sibling(n, -1);
+  // size[j]: the nodes of j's subtree (children precede their parent).
+  std::vector<int> size(n, 1);
+  for (int j = 0; j < n; ++j)
+    if (parent[j] != -1) size[parent[j]] += size[j];
+  // The postorder lays the roots' subtrees out in increasing order, and within j's block its
+  // children's subtrees in increasing order, then j. Going down from the largest node, each
+  // takes the last free block of its parent's (a root: the forest's) range, and its own last
+  // position.
+  std::vector<int> post(n), free_end(n);
+  int forest_end = n;
   for (int j = n - 1; j >= 0; --j) {
-    if (parent[j] == -1) continue;
-    next_sibling[j] = first_child[parent[j]];
-    first_child[parent[j]] = j;
-  }
-  std::vector<int> post;
-  post.reserve(n);
-  std::vector<int> stack;
-  for (int root = 0; root < n; ++root) {
-    if (parent[root] != -1) continue;
-    stack.push_back(root);
-    while (!stack.empty()) {
-      const int top = stack.back();
-      const int child = first_child[top];
-      if (child == -1) {
-        // All children done: emit top and continue with its next sibling.
-        post.push_back(top);
-        stack.pop_back();
-      } else {
-        first_child[top] = next_sibling[child];
-        stack.push_back(child);
-      }
-    }
+    int& end = parent[j] == -1 ? forest_end : free_end[parent[j]];
+    post[end - 1] = j;
+    free_end[j] = end - 1;
+    end -= size[j];
   }
   return post;
 }
