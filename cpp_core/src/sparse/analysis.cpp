@@ -12,30 +12,16 @@ Analysis analyze_pattern(const CscMatrix& a) {
   // cliques are rare in meshes and cost more to test.
   constexpr int kMaxSimplicialDegree = 4;
   Analysis analysis;
-  Pattern graph = adjacency_graph(a);
+  const Pattern graph = adjacency_graph(a);
   const std::vector<int> simplicial = simplicial_nodes(graph, kMaxSimplicialDegree);
   const int prefix_size = static_cast<int>(simplicial.size());
-  // The rest: the subgraph induced by the other nodes, rest[t] its node t.
-  std::vector<int> rest;
-  if (prefix_size > 0) {
-    std::vector<int> local(graph.n, 0);
-    for (int v : simplicial) local[v] = -1;
-    for (int v = 0; v < graph.n; ++v)
-      if (local[v] == 0) {
-        local[v] = static_cast<int>(rest.size());
-        rest.push_back(v);
-      }
-    keep_induced_subgraph(graph, local);
-  } else {
-    rest.resize(graph.n);
-    for (int v = 0; v < graph.n; ++v) rest[v] = v;
-  }
   // The rest in minimum-degree order, postordered so that supernodes are runs of consecutive
   // columns, after the simplicial nodes.
-  const TreeOrder order = postordered_minimum_degree(graph);
+  std::vector<char> in_prefix(graph.n, 0);
+  for (int v : simplicial) in_prefix[v] = 1;
+  const TreeOrder order = postordered_minimum_degree(graph, in_prefix);
   analysis.perm = simplicial;
-  analysis.perm.reserve(a.cols);
-  for (int v : order.perm) analysis.perm.push_back(rest[v]);
+  analysis.perm.insert(analysis.perm.end(), order.perm.begin(), order.perm.end());
   analysis.lower = permute_lower(a, invert_permutation(analysis.perm));
   analysis.prefix = simplicial_prefix(analysis.lower.pattern, prefix_size);
   const std::vector<int> counts = column_counts(analysis.lower.pattern, prefix_size, order.parent);

@@ -15,17 +15,19 @@ namespace meshik::sparse {
 // adjacent, increasing.
 std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree);
 
-// A symmetric permutation and the elimination tree of the permuted matrix.
+// A symmetric permutation of some of a graph's nodes and the elimination tree of the permuted
+// matrix.
 struct TreeOrder {
-  std::vector<int> perm;     // n: perm[k] is the node eliminated k-th
-  std::vector<int> inverse;  // n: inverse[perm[k]] = k
-  std::vector<int> parent;   // n: elimination tree of P A P^T (parent[k] > k, or -1 for a root)
+  std::vector<int> perm;     // m: perm[k] is the node (graph numbering) eliminated k-th
+  std::vector<int> inverse;  // graph.n: inverse[perm[k]] = k, and m for a node left out
+  std::vector<int> parent;   // m: elimination tree of P A P^T (parent[k] > k, or -1 for a root)
 };
 
-// graph: as above. Returns AMD's order (the one amd_order gives for the matrix) followed by a
-// depth-first postorder of its elimination tree (children in increasing order), so that every
+// graph: as above; left_out: graph.n flags, nonzero for the nodes not to order. Returns AMD's
+// order of the subgraph induced by the other m nodes (the one amd_order gives for it) followed by
+// a depth-first postorder of its elimination tree (children in increasing order), so that every
 // subtree is a run of consecutive columns. Fill and the tree's shape are AMD's.
-TreeOrder postordered_minimum_degree(const Pattern& graph);
+TreeOrder postordered_minimum_degree(const Pattern& graph, const std::vector<char>& left_out);
 
 // perm: a permutation of 0..n-1. Returns its inverse (inverse[perm[k]] = k).
 std::vector<int> invert_permutation(const std::vector<int>& perm);

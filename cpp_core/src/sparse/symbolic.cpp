@@ -51,8 +51,9 @@ void row_structures(const PermutedView& graph, const SupernodePartition& partiti
     for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) f.rows[p++] = j;
     next[s] = p;
   }
-  // The supernode of each node of the graph: one lookup per entry below, not two.
-  std::vector<int> node_supernode(f.n);
+  // The supernode of each node of the graph: one lookup per entry below, not two (ns, past every
+  // supernode, for nodes outside the view).
+  std::vector<int> node_supernode(graph.graph.n, ns);
   for (int k = 0; k < f.n; ++k) node_supernode[graph.perm[k]] = supernode_of[k];
   std::vector<int> mark(ns, -1);
   const int* parent = f.parent.data();

@@ -31,25 +31,4 @@ Pattern adjacency_graph(const CscMatrix& a) {
   return g;
 }
 
-void keep_induced_subgraph(Pattern& graph, const std::vector<int>& local) {
-  // Kept node v becomes t <= v and its list only shrinks, so writing entry q and offset t + 1
-  // never overtakes what is still to be read (v's old offsets are read before t + 1 <= v + 1 is
-  // written).
-  int kept = 0, q = 0, old_begin = 0;
-  for (int v = 0; v < graph.n; ++v) {
-    const int old_end = graph.col_start[v + 1];
-    if (local[v] >= 0) {
-      for (int p = old_begin; p < old_end; ++p) {
-        const int u = local[graph.row_index[p]];
-        if (u >= 0) graph.row_index[q++] = u;
-      }
-      graph.col_start[++kept] = q;
-    }
-    old_begin = old_end;
-  }
-  graph.n = kept;
-  graph.col_start.resize(kept + 1);
-  graph.row_index.resize(q);
-}
-
 }  // namespace meshik::sparse
