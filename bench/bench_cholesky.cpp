@@ -7,6 +7,7 @@
 // Usage: bench_cholesky [--samples DIR] [--data DIR] [--reps N] [--handles H] [--rhs K]
 //                       [--sphere FREQUENCY] [--only NAME]
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -43,6 +44,45 @@ void print_row(const Result& r) {
               r.numeric_ms, r.analyze_ms + r.numeric_ms, r.solve_ms, r.residual);
 }
 
+double median_of(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// The analyses of MeshIK and CHOLMOD simplicial (its default ordering) timed in alternating
+// pairs, `reps` of each after one untimed warm-up, so that both see the same load on a shared
+// machine. Prints their medians and the median of the per-pair ratios.
+void bench_analysis_pairs(const CscMatrix& a, int reps) {
+  meshik::SparseCholesky ours;
+  cholmod_common common;
+  cholmod_start(&common);
+  common.supernodal = CHOLMOD_SIMPLICIAL;
+  cholmod_sparse* ca = cholmod_allocate_sparse(a.rows, a.cols, a.row_index.size(), 1, 1, -1, CHOLMOD_REAL, &common);
+  std::copy(a.col_start.begin(), a.col_start.end(), static_cast<int*>(ca->p));
+  std::copy(a.row_index.begin(), a.row_index.end(), static_cast<int*>(ca->i));
+  std::copy(a.values.begin(), a.values.end(), static_cast<double*>(ca->x));
+  cholmod_factor* l = nullptr;
+  std::vector<double> our_ms, their_ms, ratio;
+  for (int r = 0; r <= reps; ++r) {
+    const auto start = meshik_bench::Clock::now();
+    ours.analyze(a);
+    const auto middle = meshik_bench::Clock::now();
+    cholmod_free_factor(&l, &common);
+    const auto restart = meshik_bench::Clock::now();
+    l = cholmod_analyze(ca, &common);
+    const auto end = meshik_bench::Clock::now();
+    if (r == 0) continue;  // warm-up
+    our_ms.push_back(std::chrono::duration<double, std::milli>(middle - start).count());
+    their_ms.push_back(std::chrono::duration<double, std::milli>(end - restart).count());
+    ratio.push_back(our_ms.back() / their_ms.back());
+  }
+  std::printf("  analysis in %d alternating pairs: MeshIK %.2f ms, CHOLMOD simplicial %.2f ms, OUR/THEIRS %.2f\n",
+              reps, median_of(our_ms), median_of(their_ms), median_of(ratio));
+  cholmod_free_factor(&l, &common);
+  cholmod_free_sparse(&ca, &common);
+  cholmod_finish(&common);
+}
+
 void bench_matrix(const std::string& name, const CscMatrix& a, const Options& options) {
   if (!options.only.empty() && name.find(options.only) == std::string::npos) return;
   std::printf("\n%s: n = %d, nnz(lower A) = %zu, %d right-hand sides, median of %d\n", name.c_str(),
@@ -68,6 +108,7 @@ void bench_matrix(const std::string& name, const CscMatrix& a, const Options& op
     std::printf("    vs %-30s factor %.2f  numeric %.2f  analyze %.2f  solve %.2f\n", r.name.c_str(),
                 (ours.analyze_ms + ours.numeric_ms) / (r.analyze_ms + r.numeric_ms),
                 ours.numeric_ms / r.numeric_ms, ours.analyze_ms / r.analyze_ms, ours.solve_ms / r.solve_ms);
+  bench_analysis_pairs(a, 3 * options.reps);
 }
 
 void bench_mesh(const std::string& name, const meshik_bench::TriangleMesh& mesh, const Options& options) {

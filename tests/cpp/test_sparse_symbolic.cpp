@@ -1,6 +1,7 @@
 // Symbolic analysis (adjacency graph, ordering, elimination tree, postorder, column counts,
 // supernodes and their row structures) against a brute-force symbolic elimination on dense
 // boolean matrices.
+#include <amd.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "sparse/column_counts.h"
 #include "sparse/elimination_tree.h"
 #include "sparse/ordering.h"
+#include "sparse/permuted_matrix.h"
 #include "sparse/supernodes.h"
 #include "sparse/symbolic.h"
 #include "sparse/symmetric_graph.h"
@@ -84,6 +86,48 @@ TEST(SparseSymbolic, AdjacencyGraphIsSymmetricAndSorted) {
   }
 }
 
+TEST(SparseSymbolic, OrderIsAmdOrderOfTheKeptNodesPostordered) {
+  unsigned seed = 300;
+  for (int n : {1, 7, 60, 200})
+    for (double density : {0.0, 0.05, 0.3})
+      for (bool leave_some_out : {false, true}) {
+        SCOPED_TRACE("n=" + std::to_string(n) + " density=" + std::to_string(density) +
+                     " leave_some_out=" + std::to_string(leave_some_out));
+        const BoolMatrix a = random_pattern(n, density, seed++);
+        std::vector<char> left_out(n, 0);
+        std::vector<int> kept;
+        for (int v = 0; v < n; ++v) {
+          left_out[v] = leave_some_out && v % 4 == 2;
+          if (!left_out[v]) kept.push_back(v);
+        }
+        const int m = static_cast<int>(kept.size());
+        // amd_order of the kept nodes' submatrix, then the postorder of its elimination tree.
+        BoolMatrix sub(m, std::vector<bool>(m));
+        for (int s = 0; s < m; ++s)
+          for (int t = 0; t < m; ++t) sub[s][t] = a[kept[s]][kept[t]];
+        const meshik::CscMatrix sub_lower = lower_matrix(sub);
+        std::vector<int> amd(m);
+        double control[AMD_CONTROL];
+        amd_defaults(control);
+        ASSERT_EQ(amd_order(m, sub_lower.col_start.data(), sub_lower.row_index.data(), amd.data(), control, nullptr),
+                  AMD_OK);
+        const Pattern sub_graph = adjacency_graph(sub_lower);
+        const std::vector<int> amd_inverse = invert_permutation(amd);
+        const std::vector<int> amd_parent = elimination_tree(PermutedView{sub_graph, amd, amd_inverse});
+        const std::vector<int> post = tree_postorder(amd_parent);
+
+        const TreeOrder order = postordered_minimum_degree(adjacency_graph(lower_matrix(a)), left_out);
+        ASSERT_EQ(order.perm.size(), kept.size());
+        for (int k = 0; k < m; ++k) {
+          EXPECT_EQ(order.perm[k], kept[amd[post[k]]]) << "pivot " << k;
+          EXPECT_EQ(order.inverse[order.perm[k]], k);
+        }
+        for (int v = 0; v < n; ++v)
+          if (left_out[v]) EXPECT_EQ(order.inverse[v], m) << "left-out node " << v;
+        EXPECT_EQ(order.parent, relabel_tree(amd_parent, post));
+      }
+}
+
 TEST(SparseSymbolic, EliminationTreeAndCountsMatchBruteForce) {
   unsigned seed = 1;
   for (int n : {1, 2, 5, 12, 40, 90})
@@ -95,19 +139,21 @@ TEST(SparseSymbolic, EliminationTreeAndCountsMatchBruteForce) {
       std::vector<int> perm = identity(n);
       std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
       const std::vector<int> inverse = invert_permutation(perm);
-      const Pattern view = permuted_graph(graph, perm, inverse);
-      const BoolMatrix l = symbolic_elimination(permuted(a, perm));
-      const std::vector<int> parent = elimination_tree(view);
+      const std::vector<int> parent = elimination_tree(PermutedView{graph, perm, inverse});
+      // Column counts need a postordered tree: the same permutation followed by the postorder.
       const std::vector<int> post = tree_postorder(parent);
-      const std::vector<int> counts = column_counts(view, parent, post);
+      std::vector<int> post_perm(n);
+      for (int k = 0; k < n; ++k) post_perm[k] = perm[post[k]];
+      const PermutedLower post_lower = permute_lower(lower_matrix(a), invert_permutation(post_perm));
+      const std::vector<int> counts = column_counts(post_lower.pattern, 0, relabel_tree(parent, post));
+      const BoolMatrix l = symbolic_elimination(permuted(a, perm));
+      const BoolMatrix post_l = symbolic_elimination(permuted(a, post_perm));
       for (int j = 0; j < n; ++j) {
         // parent[j]: the first off-diagonal row of column j of L.
         int first_row = -1, count = 1;
         for (int i = n - 1; i > j; --i)
-          if (l[i][j]) {
-            first_row = i;
-            ++count;
-          }
+          if (l[i][j]) first_row = i;
+        for (int i = j + 1; i < n; ++i) count += post_l[i][j];
         EXPECT_EQ(parent[j], first_row) << "column " << j;
         EXPECT_EQ(counts[j], count) << "column " << j;
       }
@@ -122,18 +168,14 @@ TEST(SparseSymbolic, SupernodeRowsMatchBruteForce) {
       const BoolMatrix a = random_pattern(n, density, seed++);
       const Pattern graph = adjacency_graph(lower_matrix(a));
       // Postordered fill-reducing order, as SparseCholesky::analyze builds it.
-      const std::vector<int> order = minimum_degree_ordering(graph);
-      const Pattern ordered = permuted_graph(graph, order, invert_permutation(order));
-      const std::vector<int> order_parent = elimination_tree(ordered);
-      const std::vector<int> post = tree_postorder(order_parent);
-      std::vector<int> perm(n);
-      for (int k = 0; k < n; ++k) perm[k] = order[post[k]];
-      const std::vector<int> inverse = invert_permutation(perm);
-      const Pattern view = permuted_graph(graph, perm, inverse);
-      const std::vector<int> parent = relabel_tree(order_parent, post);
-      const std::vector<int> counts = column_counts(view, parent, tree_postorder(parent));
-      const SupernodePartition partition = find_supernodes(parent, counts);
-      const SymbolicFactor f = symbolic_factor(view, parent, counts, partition, 0);
+      const TreeOrder order = postordered_minimum_degree(graph, std::vector<char>(n, 0));
+      const std::vector<int>& perm = order.perm;
+      EXPECT_EQ(order.inverse, invert_permutation(perm));
+      const PermutedLower lower = permute_lower(lower_matrix(a), order.inverse);
+      const std::vector<int> counts = column_counts(lower.pattern, 0, order.parent);
+      const SupernodePartition partition = find_supernodes(order.parent, counts);
+      const SymbolicFactor f =
+          symbolic_factor(PermutedView{graph, perm, order.inverse}, order.parent, counts, partition, 0);
       std::vector<int> supernode_of(n);
       for (int s = 0; s < f.num_supernodes(); ++s)
         for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) supernode_of[j] = s;

@@ -4,16 +4,6 @@ namespace meshik::sparse {
 
 namespace {
 
-// first[j]: the postorder index of the first descendant of j (j included).
-// Returns n entries.
-std::vector<int> first_descendants(const std::vector<int>& parent, const std::vector<int>& post) {
-  const int n = static_cast<int>(parent.size());
-  std::vector<int> first(n, -1);
-  for (int k = 0; k < n; ++k)
-    for (int j = post[k]; j != -1 && first[j] == -1; j = parent[j]) first[j] = k;
-  return first;
-}
-
 // Root of i's set in the union-find forest `ancestor` (ancestor[r] == r for a root), with
 // path compression.
 int find_root(std::vector<int>& ancestor, int i) {
@@ -29,27 +19,36 @@ int find_root(std::vector<int>& ancestor, int i) {
 
 }  // namespace
 
-std::vector<int> column_counts(const Pattern& graph, const std::vector<int>& parent,
-                               const std::vector<int>& post) {
-  const int n = graph.n;
-  const std::vector<int> first = first_descendants(parent, post);
-  // delta[j]: count contributions that sum over the subtree of j to nnz(L(:, j)).
-  std::vector<int> delta(n, 0);
-  for (int j = 0; j < n; ++j) delta[j] = post[first[j]] == j ? 1 : 0;  // leaves of the tree
+std::vector<int> column_counts(const Pattern& lower, int first_column, const std::vector<int>& parent) {
+  const int n = static_cast<int>(parent.size());
+  // first[j]: the first (smallest) descendant of j, j included: j's subtree is first[j] .. j.
+  std::vector<int> first(n);
+  for (int j = 0; j < n; ++j) first[j] = j;
+  for (int j = 0; j < n; ++j)
+    if (parent[j] != -1 && first[j] < first[parent[j]]) first[parent[j]] = first[j];
+  // delta[j]: count contributions that sum over the subtree of j to nnz(L(:, j)); 1 for a leaf.
+  std::vector<int> delta(n);
   // Per row i: the largest `first` of a leaf of row subtree i seen so far, and that leaf.
   std::vector<int> max_first(n, -1), previous_leaf(n, -1);
   std::vector<int> ancestor(n);
-  for (int j = 0; j < n; ++j) ancestor[j] = j;
-
-  for (int k = 0; k < n; ++k) {
-    const int j = post[k];
+  for (int j = 0; j < n; ++j) {
+    delta[j] = first[j] == j ? 1 : 0;
+    ancestor[j] = j;
+  }
+  const int* rows = lower.row_index.data();
+  const int* column_start = lower.col_start.data() + first_column;
+  for (int j = 0; j < n; ++j) {
     if (parent[j] != -1) --delta[parent[j]];
-    for (int p = graph.col_start[j]; p < graph.col_start[j + 1]; ++p) {
-      const int i = graph.row_index[p];
+    // Row j's subtree is complete (its leaves are earlier columns): its max_first now makes the
+    // diagonal entry fail the leaf test below.
+    max_first[j] = j;
+    const int first_j = first[j];
+    for (int p = column_start[j]; p < column_start[j + 1]; ++p) {
+      const int i = rows[p] - first_column;
       // j is a leaf of row subtree i iff A(i, j) != 0, i > j, and no earlier leaf of that
       // subtree lies inside j's subtree (first[j] > max_first[i]).
-      if (i <= j || first[j] <= max_first[i]) continue;
-      max_first[i] = first[j];
+      if (first_j <= max_first[i]) continue;
+      max_first[i] = first_j;
       const int prev = previous_leaf[i];
       previous_leaf[i] = j;
       ++delta[j];

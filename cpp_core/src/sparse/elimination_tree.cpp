@@ -2,52 +2,41 @@
 
 namespace meshik::sparse {
 
-std::vector<int> elimination_tree(const Pattern& graph) {
-  const int n = graph.n;
+std::vector<int> elimination_tree(const PermutedView& graph) {
+  const int n = graph.size();
   std::vector<int> parent(n, -1);
   // ancestor[i]: a known ancestor of i (path-compressed), -1 when i is a root so far.
   std::vector<int> ancestor(n, -1);
-  for (int k = 0; k < n; ++k) {
-    for (int p = graph.col_start[k]; p < graph.col_start[k + 1]; ++p) {
+  for (int k = 0; k < n; ++k)
+    graph.for_each_neighbour(k, [&](int i) {
       // A(i, k) != 0 with i < k: k is an ancestor of i; climb to i's current root.
-      for (int i = graph.row_index[p]; i != -1 && i < k;) {
+      while (i != -1 && i < k) {
         const int next = ancestor[i];
         ancestor[i] = k;
         if (next == -1) parent[i] = k;
         i = next;
       }
-    }
-  }
+    });
   return parent;
 }
 
 std::vector<int> tree_postorder(const std::vector<int>& parent) {
   const int n = static_cast<int>(parent.size());
-  // Children lists: first_child / next_sibling, built backwards so they come out increasing.
-  std::vector<int> first_child(n, -1), next_sibling(n, -1);
+  // size[j]: the nodes of j's subtree (children precede their parent).
+  std::vector<int> size(n, 1);
+  for (int j = 0; j < n; ++j)
+    if (parent[j] != -1) size[parent[j]] += size[j];
+  // The postorder lays the roots' subtrees out in increasing order, and within j's block its
+  // children's subtrees in increasing order, then j. Going down from the largest node, each
+  // takes the last free block of its parent's (a root: the forest's) range, and its own last
+  // position.
+  std::vector<int> post(n), free_end(n);
+  int forest_end = n;
   for (int j = n - 1; j >= 0; --j) {
-    if (parent[j] == -1) continue;
-    next_sibling[j] = first_child[parent[j]];
-    first_child[parent[j]] = j;
-  }
-  std::vector<int> post;
-  post.reserve(n);
-  std::vector<int> stack;
-  for (int root = 0; root < n; ++root) {
-    if (parent[root] != -1) continue;
-    stack.push_back(root);
-    while (!stack.empty()) {
-      const int top = stack.back();
-      const int child = first_child[top];
-      if (child == -1) {
-        // All children done: emit top and continue with its next sibling.
-        post.push_back(top);
-        stack.pop_back();
-      } else {
-        first_child[top] = next_sibling[child];
-        stack.push_back(child);
-      }
-    }
+    int& end = parent[j] == -1 ? forest_end : free_end[parent[j]];
+    post[end - 1] = j;
+    free_end[j] = end - 1;
+    end -= size[j];
   }
   return post;
 }

@@ -7,10 +7,10 @@
 
 namespace meshik::sparse {
 
-// graph: adjacency of a symmetric n by n matrix (column k: the neighbours of node k).
+// graph: adjacency of a symmetric n by n matrix P A P^T (node k: the neighbours of column k).
 // Returns parent, n entries: parent[j] is the parent of column j in the elimination tree of
 // the Cholesky factor, or -1 for a root. parent[j] > j always.
-std::vector<int> elimination_tree(const Pattern& graph);
+std::vector<int> elimination_tree(const PermutedView& graph);
 
 // parent: a forest with parent[j] > j or -1. Returns post, n entries: post[k] is the k-th
 // node of a depth-first postorder (children in increasing order, every node after its

@@ -1,6 +1,7 @@
 // Fill-reducing ordering of a symmetric matrix: simplicial nodes (their neighbours already
 // form a clique, so eliminating them first creates no fill: the 4th-vertex unknowns of
-// MeshIK's kept form are such nodes) and approximate minimum degree (SuiteSparse AMD).
+// MeshIK's kept form are such nodes) and approximate minimum degree (SuiteSparse AMD),
+// postordered along its elimination tree.
 #pragma once
 
 #include <vector>
@@ -14,9 +15,19 @@ namespace meshik::sparse {
 // adjacent, increasing.
 std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree);
 
-// graph: as above. Returns AMD's permutation of it, n entries: perm[k] is the node
-// eliminated k-th.
-std::vector<int> minimum_degree_ordering(const Pattern& graph);
+// A symmetric permutation of some of a graph's nodes and the elimination tree of the permuted
+// matrix.
+struct TreeOrder {
+  std::vector<int> perm;     // m: perm[k] is the node (graph numbering) eliminated k-th
+  std::vector<int> inverse;  // graph.n: inverse[perm[k]] = k, and m for a node left out
+  std::vector<int> parent;   // m: elimination tree of P A P^T (parent[k] > k, or -1 for a root)
+};
+
+// graph: as above; left_out: graph.n flags, nonzero for the nodes not to order. Returns AMD's
+// order of the subgraph induced by the other m nodes (the one amd_order gives for it) followed by
+// a depth-first postorder of its elimination tree (children in increasing order), so that every
+// subtree is a run of consecutive columns. Fill and the tree's shape are AMD's.
+TreeOrder postordered_minimum_degree(const Pattern& graph, const std::vector<char>& left_out);
 
 // perm: a permutation of 0..n-1. Returns its inverse (inverse[perm[k]] = k).
 std::vector<int> invert_permutation(const std::vector<int>& perm);

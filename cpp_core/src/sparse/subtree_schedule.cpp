@@ -46,23 +46,27 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f, int threads) {
   // in `subtrees` and the taken roots in `top`. Returns the number of splits (at most `splits`)
   // after which the estimated time on `threads` was least: the top, then the subtrees (at
   // best the rest shared evenly, at worst the largest alone).
+  // `subtrees` is kept as a heap whose front is the subtree of most work (of two of equal work,
+  // the larger index), so each split costs O(log #subtrees).
+  const auto less_work = [&](int a, int b) { return work[a] < work[b] || (work[a] == work[b] && a < b); };
   auto split = [&](int splits, std::vector<int>& top, std::vector<int>& subtrees) {
     subtrees = roots;
+    std::make_heap(subtrees.begin(), subtrees.end(), less_work);
     top.clear();
     double top_work = 0.0, best_time = total;
     int best = 0;
     for (int step = 1; step <= splits; ++step) {
-      const auto largest = std::max_element(subtrees.begin(), subtrees.end(), [&](int a, int b) {
-        return work[a] < work[b] || (work[a] == work[b] && a < b);
-      });
-      const int s = *largest;
+      const int s = subtrees.front();
       if (f.child_start[s] == f.child_start[s + 1]) break;
-      subtrees.erase(largest);
+      std::pop_heap(subtrees.begin(), subtrees.end(), less_work);
+      subtrees.pop_back();
       top.push_back(s);
       top_work += own[s];
-      double largest_work = 0.0;
-      for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) subtrees.push_back(f.children[c]);
-      for (int t : subtrees) largest_work = std::max(largest_work, work[t]);
+      for (int c = f.child_start[s]; c < f.child_start[s + 1]; ++c) {
+        subtrees.push_back(f.children[c]);
+        std::push_heap(subtrees.begin(), subtrees.end(), less_work);
+      }
+      const double largest_work = subtrees.empty() ? 0.0 : work[subtrees.front()];
       const double time = top_work + std::max(largest_work, (total - top_work) / threads);
       if (time < best_time) {
         best_time = time;
@@ -74,7 +78,7 @@ SubtreeSchedule subtree_schedule(const SymbolicFactor& f, int threads) {
   std::vector<int> subtrees;
   split(split(std::min(count, kMaxSplits), schedule.top, subtrees), schedule.top, subtrees);
   std::sort(schedule.top.begin(), schedule.top.end());
-  std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) { return work[a] > work[b] || (work[a] == work[b] && a < b); });
+  std::sort(subtrees.begin(), subtrees.end(), [&](int a, int b) { return less_work(b, a); });
   const int groups = static_cast<int>(subtrees.size());
   std::vector<int> group(count, groups);  // the top is the last group
   for (int t = 0; t < groups; ++t) {

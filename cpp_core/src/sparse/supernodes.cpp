@@ -7,10 +7,12 @@ namespace {
 // Maximal runs of columns whose structures nest (see find_supernodes). Returns #S + 1 offsets.
 std::vector<int> chain_supernodes(const std::vector<int>& parent, const std::vector<int>& counts) {
   const int n = static_cast<int>(parent.size());
-  std::vector<int> first = {0};
+  std::vector<int> first(n + 1);
+  int chains = 0;
   for (int j = 1; j < n; ++j)
-    if (!(parent[j - 1] == j && counts[j - 1] == counts[j] + 1)) first.push_back(j);
-  if (n > 0) first.push_back(n);
+    if (!(parent[j - 1] == j && counts[j - 1] == counts[j] + 1)) first[++chains] = j;
+  if (n > 0) first[++chains] = n;
+  first.resize(chains + 1);
   return first;
 }
 
@@ -56,6 +58,8 @@ SupernodePartition find_supernodes(const std::vector<int>& parent, const std::ve
     group_zeros[c] = merged_zeros;
   }
   SupernodePartition partition;
+  partition.first_column.reserve(num_chains + 1);
+  partition.row_count.reserve(num_chains);
   for (int c = 0; c < num_chains; ++c)
     if (starts_group[c]) {
       partition.first_column.push_back(chains[c]);

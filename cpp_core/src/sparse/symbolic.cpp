@@ -39,7 +39,7 @@ void supernodal_tree(const std::vector<int>& parent, const std::vector<int>& sup
 // supernode s iff L(i, j) != 0 for a column j of s, i.e. s is on the path of the supernodal
 // tree from the supernode of some j < i with A(i, j) != 0 up to (not including) i's own
 // supernode. Rows are taken in increasing order, so every list comes out sorted.
-void row_structures(const Pattern& graph, const SupernodePartition& partition,
+void row_structures(const PermutedView& graph, const SupernodePartition& partition,
                     const std::vector<int>& supernode_of, SymbolicFactor& f) {
   const int ns = static_cast<int>(partition.row_count.size());
   f.row_start.assign(ns + 1, 0);
@@ -51,17 +51,22 @@ void row_structures(const Pattern& graph, const SupernodePartition& partition,
     for (int j = f.first_column[s]; j < f.first_column[s + 1]; ++j) f.rows[p++] = j;
     next[s] = p;
   }
+  // The supernode of each node of the graph: one lookup per entry below, not two (ns, past every
+  // supernode, for nodes outside the view).
+  std::vector<int> node_supernode(graph.graph.n, ns);
+  for (int k = 0; k < f.n; ++k) node_supernode[graph.perm[k]] = supernode_of[k];
   std::vector<int> mark(ns, -1);
+  const int* parent = f.parent.data();
+  int* rows = f.rows.data();
   for (int i = 0; i < f.n; ++i) {
     const int own = supernode_of[i];
-    for (int p = graph.col_start[i]; p < graph.col_start[i + 1]; ++p) {
-      const int j = graph.row_index[p];
-      if (j >= i) continue;
-      for (int s = supernode_of[j]; s != own && mark[s] != i; s = f.parent[s]) {
+    // A neighbour j > i lies in own or a later supernode, j < i in own or an earlier one.
+    graph.for_each_neighbour(i, node_supernode, [&](int first) {
+      for (int s = first; s < own && mark[s] != i; s = parent[s]) {
         mark[s] = i;
-        f.rows[next[s]++] = i;
+        rows[next[s]++] = i;
       }
-    }
+    });
   }
   for (int s = 0; s < ns; ++s)
     if (next[s] != f.row_start[s + 1]) throw std::logic_error("SparseCholesky: inconsistent supernode row count");
@@ -69,11 +74,11 @@ void row_structures(const Pattern& graph, const SupernodePartition& partition,
 
 }  // namespace
 
-SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
+SymbolicFactor symbolic_factor(const PermutedView& graph, const std::vector<int>& parent,
                                const std::vector<int>& counts, const SupernodePartition& partition,
                                int column_offset) {
   SymbolicFactor f;
-  f.n = graph.n;
+  f.n = graph.size();
   f.first_column = partition.first_column;
   const std::vector<int> supernode_of = supernode_of_columns(f);
   supernodal_tree(parent, supernode_of, f);

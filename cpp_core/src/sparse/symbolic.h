@@ -32,9 +32,9 @@ struct SymbolicFactor {
 // graph: adjacency of the postordered, permuted matrix; parent: its elimination tree;
 // counts: its column counts (n entries each); partition: its supernodes.
 // column_offset: columns numbered before these (the simplicial prefix); the result numbers
-// columns and rows from it, so that n = column_offset + graph.n.
+// columns and rows from it, so that n = column_offset + graph.size().
 // Returns the symbolic factor.
-SymbolicFactor symbolic_factor(const Pattern& graph, const std::vector<int>& parent,
+SymbolicFactor symbolic_factor(const PermutedView& graph, const std::vector<int>& parent,
                                const std::vector<int>& counts, const SupernodePartition& partition,
                                int column_offset);
 

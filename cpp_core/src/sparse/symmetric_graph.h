@@ -12,14 +12,33 @@ namespace meshik::sparse {
 // diagonal ignored): column v lists the u != v with A(u, v) != 0, increasing.
 Pattern adjacency_graph(const CscMatrix& a);
 
-// graph: an adjacency graph (n nodes); perm: n entries, perm[k] is the node that becomes k;
-// inverse: its inverse. Returns the adjacency of P A P^T: column k lists the neighbours of
-// perm[k] renamed by `inverse` (in no particular order).
-Pattern permuted_graph(const Pattern& graph, const std::vector<int>& perm, const std::vector<int>& inverse);
+// The adjacency of P A P^T seen through the graph of A, without a copy: node k of the view is
+// node perm[k] of `graph`, its neighbours renamed by `inverse` (inverse[perm[k]] = k). perm may
+// cover only some of graph's nodes (then A is the matrix of the subgraph they induce): inverse
+// labels the others with a number past the view's last node.
+struct PermutedView {
+  const Pattern& graph;
+  const std::vector<int>& perm;
+  const std::vector<int>& inverse;
 
-// graph: an adjacency graph; kept: the nodes to keep, increasing; local[v]: v's index in
-// `kept`, or -1. Returns the subgraph induced by `kept` (node kept[t] becomes t; lists stay
-// sorted).
-Pattern induced_subgraph(const Pattern& graph, const std::vector<int>& kept, const std::vector<int>& local);
+  int size() const { return static_cast<int>(perm.size()); }
+  // Calls visit(label[u]) for each neighbour u (numbered as in `graph`) of node k of the view,
+  // in no particular order; label: one entry per node of `graph`. Asks the cache for node
+  // k + kAhead's list meanwhile: the lists lie in A's order, not the view's, and a pass over the
+  // view otherwise waits for each one.
+  template <class Visit>
+  void for_each_neighbour(int k, const std::vector<int>& label, Visit&& visit) const {
+    constexpr int kAhead = 8;
+    if (k + kAhead < size()) __builtin_prefetch(graph.row_index.data() + graph.col_start[perm[k + kAhead]]);
+    const int v = perm[k];
+    const int end = graph.col_start[v + 1];
+    for (int p = graph.col_start[v]; p < end; ++p) visit(label[graph.row_index[p]]);
+  }
+  // Calls visit(i) for each neighbour i of node k of the view, in no particular order.
+  template <class Visit>
+  void for_each_neighbour(int k, Visit&& visit) const {
+    for_each_neighbour(k, inverse, visit);
+  }
+};
 
 }  // namespace meshik::sparse
