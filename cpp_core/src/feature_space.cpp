@@ -65,6 +65,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
   std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
   std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
+  const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   for (int group = 0; group < k; group += group_size) {
     const int members = std::min(group_size, k - group);
     for (int g = 0; g < members; ++g) {
@@ -98,7 +99,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
     }
 #pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
     for (int g = 0; g < members; ++g) {
-      if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
+      if (consistent_branches) choose_consistent_log_branches(adjacency, components, distances[g].data(), logs[g]);
       const int i = group + g;
       for (int j = 0; j < m; ++j) {
         double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);

@@ -81,4 +81,27 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
   return adjacency;
 }
 
+TriangleComponents triangle_components(const TriangleAdjacency& adjacency) {
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
+  TriangleComponents components;
+  components.component_of.assign(m, -1);
+  std::vector<int> queue;
+  queue.reserve(m);
+  for (int start = 0; start < m; ++start) {
+    if (components.component_of[start] >= 0) continue;
+    const int id = components.count++;
+    components.component_of[start] = id;
+    queue.assign(1, start);
+    for (std::size_t head = 0; head < queue.size(); ++head)
+      for (int s = adjacency.start[queue[head]]; s < adjacency.start[queue[head] + 1]; ++s) {
+        const int n = adjacency.neighbour[s];
+        if (components.component_of[n] < 0) {
+          components.component_of[n] = id;
+          queue.push_back(n);
+        }
+      }
+  }
+  return components;
+}
+
 }  // namespace meshik

@@ -6,13 +6,27 @@
 #include <utility>
 #include <vector>
 
+#include "safe_basins.h"
+
 namespace meshik {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+constexpr double kPi = 3.1415926535897932384626433832795;
+constexpr double kTwoPi = 2 * kPi;
 // Below this angle a rotation is the identity to working precision and its axis is meaningless.
 constexpr double kIdentityAngle = 1e-12;
+// The branch of a principal log p (angle theta, axis a) closest to a reference r is p itself
+// when |a . r - theta| < pi (the best k is then 0). Below this bound that holds with room for
+// the rounding of the norms, the dot product and the division (a few ulps of pi).
+constexpr double kSafeOffset = kPi - 1e-9;
+// Below this angle the axis is not trusted: the bound is taken as theta + |r|.
+constexpr double kSmallAngle = 1e-6;
+// Distance thresholds of the nested basins (safe_basins.h) in which the spanning tree is
+// skipped where it cannot change a branch. The distance is about the squared angle between
+// neighbouring rotations; on the elephant's examples, from a half to a twentieth of the edges
+// are longer than these. Any increasing values give the same branches, only the time differs.
+const std::vector<double> kBasinThresholds = {1e-4, 1e-3, 1e-2, 3e-2};
 
 // Prim's frontier: the triangles next to the tree, each with its best edge into the tree
 // (distance, tree triangle), in a binary heap ordered by (distance, from, to), position-indexed
@@ -88,6 +102,15 @@ class Frontier {
   std::vector<int> position_;  // the heap slot of each triangle, -1 when not in the heap
 };
 
+// Whether closest_log_branch keeps both principal logs (angles angle_a, angle_b) principal, each
+// taken with the other as the reference.
+bool keeps_principal(const Eigen::Vector3d& a, double angle_a, const Eigen::Vector3d& b, double angle_b) {
+  if (angle_a + angle_b < kSafeOffset) return true;  // |a . r - theta| <= theta + |r|
+  if (angle_a < kSmallAngle || angle_b < kSmallAngle) return false;
+  const double dot = a.dot(b);
+  return std::abs(dot / angle_a - angle_a) < kSafeOffset && std::abs(dot / angle_b - angle_b) < kSafeOffset;
+}
+
 }  // namespace
 
 Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
@@ -104,6 +127,7 @@ Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
   // |(theta + 2 pi k) axis - reference| is smallest when theta + 2 pi k is closest to
   // axis . reference.
   const double k = std::round((axis.dot(reference) - theta) / kTwoPi);
+  if (k == 0.0) return principal;
   return (theta + kTwoPi * k) * axis;
 }
 
@@ -118,44 +142,106 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
       distances[s] = rotation_distance(rotations[j], rotations[adjacency.neighbour[s]]);
 }
 
-void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const double* distances,
-                                    std::vector<Eigen::Vector3d>& logs) {
+void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const TriangleComponents& components,
+                                    const double* distances, std::vector<Eigen::Vector3d>& logs) {
   const int m = static_cast<int>(logs.size());
-  // Prim's algorithm: grow a tree from the least rotated triangle of each component (least
-  // principal angle, then least index), always across the edge whose two rotations are closest
-  // (ties: the least tree triangle, then the least new one), so that a branch is only ever
-  // copied between nearly equal rotations.
-  std::vector<char> seen(m, 0);
-  std::vector<int> component;
-  Frontier frontier(m);
-  for (int start = 0; start < m; ++start) {
-    if (seen[start]) continue;
-    // The component of start (breadth first) and its root.
-    component.assign(1, start);
-    seen[start] = 1;
-    int root = start;
-    double root_angle = logs[start].norm();
-    for (size_t head = 0; head < component.size(); ++head) {
-      const int j = component[head];
-      const double angle = logs[j].norm();
-      if (std::tie(angle, j) < std::tie(root_angle, root)) root = j, root_angle = angle;
-      for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s)
-        if (!seen[adjacency.neighbour[s]]) {
-          seen[adjacency.neighbour[s]] = 1;
-          component.push_back(adjacency.neighbour[s]);
-        }
+  std::vector<double> angle(m);
+  for (int j = 0; j < m; ++j) angle[j] = logs[j].norm();
+  // The unsafe edges, along which a branch could leave the principal one (both logs principal):
+  // one end at least is turned by half the safe offset or more.
+  std::vector<int> unsafe;
+  for (int a = 0; a < m; ++a) {
+    if (angle[a] < 0.5 * kSafeOffset) continue;
+    for (int s = adjacency.start[a]; s < adjacency.start[a + 1]; ++s) {
+      const int b = adjacency.neighbour[s];
+      if (!keeps_principal(logs[a], angle[a], logs[b], angle[b])) unsafe.insert(unsafe.end(), {a, b});
     }
-    int joined = root;
-    for (;;) {
-      for (int s = adjacency.start[joined]; s < adjacency.start[joined + 1]; ++s) {
-        const int to = adjacency.neighbour[s];
-        if (seen[to] != 2) frontier.offer(to, distances[s], joined);
+  }
+  if (unsafe.empty()) return;  // every log keeps its principal branch, whatever the tree
+  SafeBasins basins = safe_basins(adjacency, distances, kBasinThresholds, unsafe);
+  // The root of each component with an unsafe edge (the others keep their principal logs): its
+  // least rotated triangle, the least index among equals. It keeps its principal log.
+  std::vector<int> root(components.count, -1);
+  for (size_t p = 0; p < unsafe.size(); p += 2) root[components.component_of[unsafe[p]]] = unsafe[p];
+  for (int j = 0; j < m; ++j) {
+    int& r = root[components.component_of[j]];
+    if (r >= 0 && std::tie(angle[j], j) < std::tie(angle[r], r)) r = j;
+  }
+
+  // Prim's algorithm: grow a tree from each root, always across the edge whose two rotations
+  // are closest (ties: the least tree triangle, then the least new one), so that a branch is only
+  // ever copied between nearly equal rotations. A basin is added whole before any edge leaving it
+  // (safe_basins.h): where the tree enters a safe basin from a principal log across a safe edge,
+  // every triangle of it keeps its principal log whatever the tree inside, and the basin joins
+  // at once. Entered otherwise, its triangles are marked (safe level -1) to be added one by one.
+  enum : char { kOutside, kPrincipal, kOtherBranch };
+  std::vector<char> state(m, kOutside);
+  Frontier frontier(m);
+  std::vector<int> members, leaving;
+  const auto offer_edges_of = [&](int j) {
+    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s)
+      if (state[adjacency.neighbour[s]] == kOutside) frontier.offer(adjacency.neighbour[s], distances[s], j);
+  };
+  // Adds the basin of x at `level` to the tree with its principal logs (x outside the tree, the
+  // basin not entered), and offers the edges leaving it.
+  const auto join_basin = [&](int x, int level) {
+    members.assign(1, x);
+    leaving.clear();
+    state[x] = kPrincipal;
+    for (size_t head = 0; head < members.size(); ++head) {
+      const int j = members[head];
+      for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
+        const int n = adjacency.neighbour[s];
+        if (state[n] != kOutside) continue;
+        if (basins.edge_level[s] <= level) {
+          state[n] = kPrincipal;
+          members.push_back(n);
+        } else {
+          leaving.insert(leaving.end(), {j, s});
+        }
       }
-      seen[joined] = 2;  // in the tree
-      if (frontier.empty()) break;
+    }
+    for (size_t p = 0; p < leaving.size(); p += 2) {
+      const int s = leaving[p + 1];
+      if (state[adjacency.neighbour[s]] == kOutside) frontier.offer(adjacency.neighbour[s], distances[s], leaving[p]);
+    }
+  };
+  // Marks the triangles of x's basin at `level` (x outside the tree, the basin not entered) to be
+  // added one by one.
+  const auto unmark_basin = [&](int x, int level) {
+    members.assign(1, x);
+    basins.safe_level[x] = -1;
+    for (size_t head = 0; head < members.size(); ++head)
+      for (int s = adjacency.start[members[head]]; s < adjacency.start[members[head] + 1]; ++s) {
+        const int n = adjacency.neighbour[s];
+        if (basins.edge_level[s] <= level && basins.safe_level[n] >= 0) {
+          basins.safe_level[n] = -1;
+          members.push_back(n);
+        }
+      }
+  };
+  // Adds x to the tree, reached from `from` (-1 for a root).
+  const auto join = [&](int x, int from) {
+    const int level = basins.safe_level[x];
+    if (level >= 0) {
+      // x enters its basin at `level`: were the basin entered, x would be in the tree or marked.
+      if (from < 0 || (state[from] == kPrincipal && keeps_principal(logs[from], angle[from], logs[x], angle[x]))) {
+        join_basin(x, level);
+        return;
+      }
+      unmark_basin(x, level);
+    }
+    const Eigen::Vector3d principal = logs[x];
+    if (from >= 0) logs[x] = closest_log_branch(principal, logs[from]);
+    state[x] = logs[x] == principal ? kPrincipal : kOtherBranch;
+    offer_edges_of(x);
+  };
+  for (int r : root) {
+    if (r < 0) continue;
+    join(r, -1);
+    while (!frontier.empty()) {
       const auto [to, from] = frontier.pop();
-      logs[to] = closest_log_branch(logs[to], logs[from]);
-      joined = to;
+      if (state[to] == kOutside) join(to, from);
     }
   }
 }
@@ -165,7 +251,7 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                     std::vector<Eigen::Vector3d>& logs) {
   std::vector<double> distances(adjacency.neighbour.size());
   rotation_edge_distances(adjacency, rotations.data(), 0, static_cast<int>(rotations.size()), distances.data());
-  choose_consistent_log_branches(adjacency, distances.data(), logs);
+  choose_consistent_log_branches(adjacency, triangle_components(adjacency), distances.data(), logs);
 }
 
 }  // namespace meshik
