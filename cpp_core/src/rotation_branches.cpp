@@ -142,8 +142,9 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
       distances[s] = rotation_distance(rotations[j], rotations[adjacency.neighbour[s]]);
 }
 
-void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const TriangleComponents& components,
-                                    const double* distances, std::vector<Eigen::Vector3d>& logs) {
+std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                                const TriangleComponents& components, const double* distances,
+                                                std::vector<Eigen::Vector3d>& logs) {
   const int m = static_cast<int>(logs.size());
   std::vector<double> angle(m);
   for (int j = 0; j < m; ++j) angle[j] = logs[j].norm();
@@ -157,7 +158,8 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const Tr
       if (!keeps_principal(logs[a], angle[a], logs[b], angle[b])) unsafe.insert(unsafe.end(), {a, b});
     }
   }
-  if (unsafe.empty()) return;  // every log keeps its principal branch, whatever the tree
+  std::vector<int> moved;
+  if (unsafe.empty()) return moved;  // every log keeps its principal branch, whatever the tree
   SafeBasins basins = safe_basins(adjacency, distances, kBasinThresholds, unsafe);
   // The root of each component with an unsafe edge (the others keep their principal logs): its
   // least rotated triangle, the least index among equals. It keeps its principal log.
@@ -234,6 +236,7 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const Tr
     const Eigen::Vector3d principal = logs[x];
     if (from >= 0) logs[x] = closest_log_branch(principal, logs[from]);
     state[x] = logs[x] == principal ? kPrincipal : kOtherBranch;
+    if (state[x] == kOtherBranch) moved.push_back(x);
     offer_edges_of(x);
   };
   for (int r : root) {
@@ -244,6 +247,7 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const Tr
       if (state[to] == kOutside) join(to, from);
     }
   }
+  return moved;
 }
 
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,

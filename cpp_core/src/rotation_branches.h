@@ -41,9 +41,11 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
 // (a basin of close rotations whose angles are small enough, entered from a principal log) the
 // basin's triangles keep their principal logs without the tree being grown through them: the
 // branches are those of the whole tree, bit for bit.
-// components: triangle_components(adjacency).
-void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const TriangleComponents& components,
-                                    const double* distances, std::vector<Eigen::Vector3d>& logs);
+// components: triangle_components(adjacency). Returns the triangles whose logs are no longer the
+// principal ones.
+std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                                const TriangleComponents& components, const double* distances,
+                                                std::vector<Eigen::Vector3d>& logs);
 
 // The same from the rotations (#F) themselves.
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
