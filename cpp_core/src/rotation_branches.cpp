@@ -179,25 +179,32 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   enum : char { kOutside, kPrincipal, kOtherBranch };
   std::vector<char> state(m, kOutside);
   Frontier frontier(m);
-  std::vector<int> members, leaving;
+  std::vector<int> queue(m), leaving;
+  // Raw pointers: the loops' stores could otherwise alias the vectors' own fields.
+  const int* start = adjacency.start.data();
+  const int* neighbour = adjacency.neighbour.data();
+  const signed char* edge_level = basins.edge_level.data();
+  char* in_state = state.data();
   const auto offer_edges_of = [&](int j) {
-    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s)
-      if (state[adjacency.neighbour[s]] == kOutside) frontier.offer(adjacency.neighbour[s], distances[s], j);
+    for (int s = start[j]; s < start[j + 1]; ++s)
+      if (in_state[neighbour[s]] == kOutside) frontier.offer(neighbour[s], distances[s], j);
   };
   // Adds the basin of x at `level` to the tree with its principal logs (x outside the tree, the
   // basin not entered), and offers the edges leaving it.
   const auto join_basin = [&](int x, int level) {
-    members.assign(1, x);
+    int* const basin = queue.data();
+    int size = 1;
+    basin[0] = x;
     leaving.clear();
-    state[x] = kPrincipal;
-    for (size_t head = 0; head < members.size(); ++head) {
-      const int j = members[head];
-      for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
-        const int n = adjacency.neighbour[s];
-        if (state[n] != kOutside) continue;
-        if (basins.edge_level[s] <= level) {
-          state[n] = kPrincipal;
-          members.push_back(n);
+    in_state[x] = kPrincipal;
+    for (int head = 0; head < size; ++head) {
+      const int j = basin[head];
+      for (int s = start[j]; s < start[j + 1]; ++s) {
+        const int n = neighbour[s];
+        if (in_state[n] != kOutside) continue;
+        if (edge_level[s] <= level) {
+          in_state[n] = kPrincipal;
+          basin[size++] = n;
         } else {
           leaving.insert(leaving.end(), {j, s});
         }
@@ -205,22 +212,22 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
     }
     for (size_t p = 0; p < leaving.size(); p += 2) {
       const int s = leaving[p + 1];
-      if (state[adjacency.neighbour[s]] == kOutside) frontier.offer(adjacency.neighbour[s], distances[s], leaving[p]);
+      if (in_state[neighbour[s]] == kOutside) frontier.offer(neighbour[s], distances[s], leaving[p]);
     }
   };
   // Marks the triangles of x's basin at `level` (x outside the tree, the basin not entered) to be
   // added one by one.
   const auto unmark_basin = [&](int x, int level) {
-    members.assign(1, x);
+    int* const basin = queue.data();
+    int size = 1;
+    basin[0] = x;
     basins.safe_level[x] = -1;
-    for (size_t head = 0; head < members.size(); ++head)
-      for (int s = adjacency.start[members[head]]; s < adjacency.start[members[head] + 1]; ++s) {
-        const int n = adjacency.neighbour[s];
-        if (basins.edge_level[s] <= level && basins.safe_level[n] >= 0) {
-          basins.safe_level[n] = -1;
-          members.push_back(n);
+    for (int head = 0; head < size; ++head)
+      for (int s = start[basin[head]]; s < start[basin[head] + 1]; ++s)
+        if (edge_level[s] <= level && basins.safe_level[neighbour[s]] >= 0) {
+          basins.safe_level[neighbour[s]] = -1;
+          basin[size++] = neighbour[s];
         }
-      }
   };
   // Adds x to the tree, reached from `from` (-1 for a root).
   const auto join = [&](int x, int from) {
