@@ -2,8 +2,9 @@
 #include "rotation_branches.h"
 
 #include <cmath>
+#include <functional>
+#include <queue>
 #include <tuple>
-#include <utility>
 #include <vector>
 
 #include "safe_basins.h"
@@ -27,80 +28,6 @@ constexpr double kSmallAngle = 1e-6;
 // neighbouring rotations; on the elephant's examples, from a half to a twentieth of the edges
 // are longer than these. Any increasing values give the same branches, only the time differs.
 const std::vector<double> kBasinThresholds = {1e-4, 1e-3, 1e-2, 3e-2};
-
-// Prim's frontier: the triangles next to the tree, each with its best edge into the tree
-// (distance, tree triangle), in a binary heap ordered by (distance, from, to), position-indexed
-// so an edge found shorter lowers its triangle's key in place. The keys live in the heap's
-// entries, so sifting reads no other array.
-class Frontier {
- public:
-  explicit Frontier(int m) : position_(m, -1) {}
-
-  bool empty() const { return heap_.empty(); }
-
-  // Offers the edge (distance, from) to triangle `to`, not in the tree: kept if it is the
-  // triangle's first or better than its current edge.
-  void offer(int to, double distance, int from) {
-    const Entry entry{distance, from, to};
-    int at = position_[to];
-    if (at < 0) {
-      at = static_cast<int>(heap_.size());
-      heap_.push_back(entry);
-    } else if (!less(entry, heap_[at])) {
-      return;
-    }
-    sift_up(at, entry);
-  }
-
-  // Removes the triangle with the least (distance, from, to); returns it and its tree neighbour.
-  std::pair<int, int> pop() {
-    const Entry top = heap_.front();
-    position_[top.to] = -1;
-    const Entry last = heap_.back();
-    heap_.pop_back();
-    if (!heap_.empty()) sift_down(0, last);
-    return {top.to, top.from};
-  }
-
- private:
-  struct Entry {
-    double distance;
-    int from, to;
-  };
-  static bool less(const Entry& a, const Entry& b) {
-    return std::tie(a.distance, a.from, a.to) < std::tie(b.distance, b.from, b.to);
-  }
-  void place(int at, const Entry& entry) {
-    heap_[at] = entry;
-    position_[entry.to] = at;
-  }
-  // Puts entry at `at` or above.
-  void sift_up(int at, const Entry& entry) {
-    while (at > 0) {
-      const int parent = (at - 1) / 2;
-      if (!less(entry, heap_[parent])) break;
-      place(at, heap_[parent]);
-      at = parent;
-    }
-    place(at, entry);
-  }
-  // Puts entry at `at` or below.
-  void sift_down(int at, const Entry& entry) {
-    const int size = static_cast<int>(heap_.size());
-    for (;;) {
-      int child = 2 * at + 1;
-      if (child >= size) break;
-      if (child + 1 < size && less(heap_[child + 1], heap_[child])) ++child;
-      if (!less(heap_[child], entry)) break;
-      place(at, heap_[child]);
-      at = child;
-    }
-    place(at, entry);
-  }
-
-  std::vector<Entry> heap_;
-  std::vector<int> position_;  // the heap slot of each triangle, -1 when not in the heap
-};
 
 // Whether closest_log_branch keeps both principal logs (angles angle_a, angle_b) principal, each
 // taken with the other as the reference.
@@ -146,16 +73,15 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
                                                 const TriangleComponents& components, const double* distances,
                                                 std::vector<Eigen::Vector3d>& logs) {
   const int m = static_cast<int>(logs.size());
-  std::vector<double> angle(m);
-  for (int j = 0; j < m; ++j) angle[j] = logs[j].norm();
   // The unsafe edges, along which a branch could leave the principal one (both logs principal):
   // one end at least is turned by half the safe offset or more.
   std::vector<int> unsafe;
   for (int a = 0; a < m; ++a) {
-    if (angle[a] < 0.5 * kSafeOffset) continue;
+    const double angle_a = logs[a].norm();
+    if (angle_a < 0.5 * kSafeOffset) continue;
     for (int s = adjacency.start[a]; s < adjacency.start[a + 1]; ++s) {
       const int b = adjacency.neighbour[s];
-      if (!keeps_principal(logs[a], angle[a], logs[b], angle[b])) unsafe.insert(unsafe.end(), {a, b});
+      if (!keeps_principal(logs[a], angle_a, logs[b], logs[b].norm())) unsafe.insert(unsafe.end(), {a, b});
     }
   }
   std::vector<int> moved;
@@ -164,10 +90,16 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   // The root of each component with an unsafe edge (the others keep their principal logs): its
   // least rotated triangle, the least index among equals. It keeps its principal log.
   std::vector<int> root(components.count, -1);
-  for (size_t p = 0; p < unsafe.size(); p += 2) root[components.component_of[unsafe[p]]] = unsafe[p];
+  std::vector<double> root_angle(components.count);
+  for (size_t p = 0; p < unsafe.size(); p += 2) {
+    root[components.component_of[unsafe[p]]] = unsafe[p];
+    root_angle[components.component_of[unsafe[p]]] = logs[unsafe[p]].norm();
+  }
   for (int j = 0; j < m; ++j) {
-    int& r = root[components.component_of[j]];
-    if (r >= 0 && std::tie(angle[j], j) < std::tie(angle[r], r)) r = j;
+    const int c = components.component_of[j];
+    if (root[c] < 0) continue;
+    const double angle = logs[j].norm();
+    if (std::tie(angle, j) < std::tie(root_angle[c], root[c])) root[c] = j, root_angle[c] = angle;
   }
 
   // Prim's algorithm: grow a tree from each root, always across the edge whose two rotations
@@ -178,7 +110,10 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   // at once. Entered otherwise, its triangles are marked (safe level -1) to be added one by one.
   enum : char { kOutside, kPrincipal, kOtherBranch };
   std::vector<char> state(m, kOutside);
-  Frontier frontier(m);
+  // The edges offered from the tree, (distance, tree triangle, triangle) least first; those whose
+  // triangle has joined since are passed over when they come up.
+  using Edge = std::tuple<double, int, int>;
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
   std::vector<int> queue(m), leaving;
   // Raw pointers: the loops' stores could otherwise alias the vectors' own fields.
   const int* start = adjacency.start.data();
@@ -187,7 +122,7 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   char* in_state = state.data();
   const auto offer_edges_of = [&](int j) {
     for (int s = start[j]; s < start[j + 1]; ++s)
-      if (in_state[neighbour[s]] == kOutside) frontier.offer(neighbour[s], distances[s], j);
+      if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], j, neighbour[s]);
   };
   // Adds the basin of x at `level` to the tree with its principal logs (x outside the tree, the
   // basin not entered), and offers the edges leaving it.
@@ -212,7 +147,7 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
     }
     for (size_t p = 0; p < leaving.size(); p += 2) {
       const int s = leaving[p + 1];
-      if (in_state[neighbour[s]] == kOutside) frontier.offer(neighbour[s], distances[s], leaving[p]);
+      if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], leaving[p], neighbour[s]);
     }
   };
   // Marks the triangles of x's basin at `level` (x outside the tree, the basin not entered) to be
@@ -234,7 +169,8 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
     const int level = basins.safe_level[x];
     if (level >= 0) {
       // x enters its basin at `level`: were the basin entered, x would be in the tree or marked.
-      if (from < 0 || (state[from] == kPrincipal && keeps_principal(logs[from], angle[from], logs[x], angle[x]))) {
+      if (from < 0 ||
+          (state[from] == kPrincipal && keeps_principal(logs[from], logs[from].norm(), logs[x], logs[x].norm()))) {
         join_basin(x, level);
         return;
       }
@@ -250,7 +186,8 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
     if (r < 0) continue;
     join(r, -1);
     while (!frontier.empty()) {
-      const auto [to, from] = frontier.pop();
+      const auto [distance, from, to] = frontier.top();
+      frontier.pop();
       if (state[to] == kOutside) join(to, from);
     }
   }
