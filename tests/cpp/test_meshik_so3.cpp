@@ -366,6 +366,29 @@ TEST(RotationBranches, ComponentsFarFromHalfTurnsKeepPrincipalLogsAndTheOthersFo
   EXPECT_GT(moved[2], 0);
 }
 
+TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangles) {
+  std::vector<int> triangles;
+  const int vertices = append_strip(5, 9, 0, triangles);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  std::mt19937 random(13);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Matrix3d> rotations;
+  for (int j = 0; j < m; ++j) rotations.push_back(so3_exp(Eigen::Vector3d(normal(random), normal(random), normal(random))));
+  std::vector<double> whole(adjacency.neighbour.size(), -1.0), split(adjacency.neighbour.size(), -1.0);
+  meshik::rotation_edge_distances(adjacency, rotations.data(), 0, m, whole.data());
+  for (int first = m - 7; first > -7; first -= 7)  // ranges from the last down, as threads may
+    meshik::rotation_edge_distances(adjacency, rotations.data(), std::max(first, 0), first + 7, split.data());
+  EXPECT_EQ(split, whole);
+  for (int j = 0; j < m; ++j)
+    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
+      const int n = adjacency.neighbour[s];
+      // The value written for both entries is the one either way round.
+      EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[j], rotations[n])) << j << " " << n;
+      EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[n], rotations[j])) << j << " " << n;
+    }
+}
+
 TEST(RotationBranches, TriangleComponentsAreNumberedByTheirLeastTriangle) {
   std::vector<int> triangles;
   int vertices = append_strip(1, 2, 0, triangles);  // triangles 0-3
