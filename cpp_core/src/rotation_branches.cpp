@@ -65,13 +65,8 @@ double rotation_distance(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to)
 void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Matrix3d* rotations, int first,
                              int last, double* distances) {
   for (int j = first; j < last; ++j)
-    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
-      const int n = adjacency.neighbour[s];
-      if (n < j) continue;
-      distances[s] = rotation_distance(rotations[j], rotations[n]);
-      for (int t = adjacency.start[n]; t < adjacency.start[n + 1]; ++t)
-        if (adjacency.neighbour[t] == j) distances[t] = distances[s];
-    }
+    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s)
+      distances[s] = rotation_distance(rotations[j], rotations[adjacency.neighbour[s]]);
 }
 
 std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,

@@ -26,11 +26,9 @@ Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
 // angle between the two rotations.
 double rotation_distance(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to);
 
-// rotations: #F rotation matrices, one per triangle. For each adjacency entry s from a triangle j
-// in [first, last) to a triangle n >= j, writes distances[s] = rotation_distance(R_j, R_n) and the
-// same value to n's entries back to j (distances: one per adjacency entry). Ranges covering all
-// triangles write every entry once, the same both ways; ranges on different threads write
-// different entries.
+// rotations: #F rotation matrices, one per triangle. Writes distances[s] =
+// rotation_distance(R_j, R_neighbour[s]) for the adjacency entries s of triangles j in
+// [first, last) (distances: one per adjacency entry).
 void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Matrix3d* rotations, int first,
                              int last, double* distances);
 

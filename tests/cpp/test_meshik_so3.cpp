@@ -367,6 +367,8 @@ TEST(RotationBranches, ComponentsFarFromHalfTurnsKeepPrincipalLogsAndTheOthersFo
 }
 
 TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangles) {
+  // The basins (safe_basins.h) read each edge from either side: its length must not depend on
+  // the side.
   std::vector<int> triangles;
   const int vertices = append_strip(5, 9, 0, triangles);
   const int m = static_cast<int>(triangles.size() / 3);
@@ -383,7 +385,7 @@ TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangl
   for (int j = 0; j < m; ++j)
     for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
       const int n = adjacency.neighbour[s];
-      // The value written for both entries is the one either way round.
+      // Each entry holds the distance from either end.
       EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[j], rotations[n])) << j << " " << n;
       EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[n], rotations[j])) << j << " " << n;
     }
