@@ -75,9 +75,13 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   const int m = static_cast<int>(logs.size());
   // The unsafe edges, along which a branch could leave the principal one (both logs principal):
   // one end at least is turned by half the safe offset or more.
-  std::vector<int> unsafe;
+  // The least rotated triangle of each component (the least index among equals) is its root.
+  std::vector<int> unsafe, root(components.count, -1);
+  std::vector<double> root_angle(components.count);
   for (int a = 0; a < m; ++a) {
     const double angle_a = logs[a].norm();
+    const int c = components.component_of[a];
+    if (root[c] < 0 || angle_a < root_angle[c]) root[c] = a, root_angle[c] = angle_a;
     if (angle_a < 0.5 * kSafeOffset) continue;
     for (int s = adjacency.start[a]; s < adjacency.start[a + 1]; ++s) {
       const int b = adjacency.neighbour[s];
@@ -87,20 +91,10 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   std::vector<int> moved;
   if (unsafe.empty()) return moved;  // every log keeps its principal branch, whatever the tree
   SafeBasins basins = safe_basins(adjacency, distances, kBasinThresholds, unsafe);
-  // The root of each component with an unsafe edge (the others keep their principal logs): its
-  // least rotated triangle, the least index among equals. It keeps its principal log.
-  std::vector<int> root(components.count, -1);
-  std::vector<double> root_angle(components.count);
-  for (size_t p = 0; p < unsafe.size(); p += 2) {
-    root[components.component_of[unsafe[p]]] = unsafe[p];
-    root_angle[components.component_of[unsafe[p]]] = logs[unsafe[p]].norm();
-  }
-  for (int j = 0; j < m; ++j) {
-    const int c = components.component_of[j];
-    if (root[c] < 0) continue;
-    const double angle = logs[j].norm();
-    if (std::tie(angle, j) < std::tie(root_angle[c], root[c])) root[c] = j, root_angle[c] = angle;
-  }
+  // Only the components with an unsafe edge grow a tree (from their roots, which keep their
+  // principal logs): the others keep all their principal logs.
+  std::vector<char> grows(components.count, 0);
+  for (size_t p = 0; p < unsafe.size(); p += 2) grows[components.component_of[unsafe[p]]] = 1;
 
   // Prim's algorithm: grow a tree from each root, always across the edge whose two rotations
   // are closest (ties: the least tree triangle, then the least new one), so that a branch is only
@@ -182,9 +176,9 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
     if (state[x] == kOtherBranch) moved.push_back(x);
     offer_edges_of(x);
   };
-  for (int r : root) {
-    if (r < 0) continue;
-    join(r, -1);
+  for (int c = 0; c < components.count; ++c) {
+    if (!grows[c]) continue;
+    join(root[c], -1);
     while (!frontier.empty()) {
       const auto [distance, from, to] = frontier.top();
       frontier.pop();
