@@ -30,13 +30,12 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
 // row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes).
 MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, double* out) {
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 2; ++c) {
-      double sum[kLanes] = {};  // the lanes innermost: vectorised
-      for (int q = 0; q < 3; ++q)
-        for (int l = 0; l < kLanes; ++l)
-          sum[l] += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
-      for (int l = 0; l < kLanes; ++l) out[(2 * r + c) * kLanes + l] = sum[l];
-    }
+    for (int c = 0; c < 2; ++c)
+      for (int l = 0; l < kLanes; ++l) {
+        double sum = 0.0;
+        for (int q = 0; q < 3; ++q) sum += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
+        out[(2 * r + c) * kLanes + l] = sum;
+      }
 }
 
 // Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
