@@ -65,6 +65,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
   std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
   std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
+  const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   for (int group = 0; group < k; group += group_size) {
     const int members = std::min(group_size, k - group);
     for (int g = 0; g < members; ++g) {
@@ -83,6 +84,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
           minus_identity_on_plane(stretch, basis, features.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
           minus_identity_on_plane(t, basis, features.linear.data() + 6 * kLanes * block);
+          for (int r = 0; r < 3; ++r)
+            for (int l = 0; l < count; ++l) features.nonlinear[9 * kLanes * block + r * kLanes + l] = log[r][l];
           for (int l = 0; l < count; ++l) {
             for (int e = 0; e < 9; ++e) rotations[first + l](e / 3, e % 3) = rotation[e][l];
             logs[g][first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
@@ -98,9 +101,10 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
     }
 #pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
     for (int g = 0; g < members; ++g) {
-      if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
+      if (!consistent_branches) continue;
+      // The principal logs are in place: write those given another branch.
       const int i = group + g;
-      for (int j = 0; j < m; ++j) {
+      for (int j : choose_consistent_log_branches(adjacency, components, distances[g].data(), logs[g])) {
         double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
         for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[g][j](r);
       }

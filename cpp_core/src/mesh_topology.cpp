@@ -1,6 +1,8 @@
-// Vertex components (union-find over triangle edges) and triangle edge adjacency.
+// Vertex components (union-find over triangle edges), triangle edge adjacency and triangle
+// components.
 #include "mesh_topology.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <numeric>
 
@@ -15,18 +17,6 @@ int find_root(std::vector<int>& parent, int x) {
     x = parent[x];
   }
   return x;
-}
-
-// The triangles around each vertex, in compressed rows (#V + 1 offsets, 3 #F entries).
-void vertex_triangles(const int* triangles, int num_triangles, int num_vertices,
-                      std::vector<int>& start, std::vector<int>& incident) {
-  start.assign(num_vertices + 1, 0);
-  for (int e = 0; e < 3 * num_triangles; ++e) ++start[triangles[e] + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  incident.resize(3 * static_cast<std::size_t>(num_triangles));
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int j = 0; j < num_triangles; ++j)
-    for (int q = 0; q < 3; ++q) incident[fill[triangles[3 * j + q]]++] = j;
 }
 
 }  // namespace
@@ -57,28 +47,62 @@ VertexComponents vertex_components(const int* triangles, int num_triangles, int 
 }
 
 TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices) {
-  std::vector<int> start, incident;
-  vertex_triangles(triangles, num_triangles, num_vertices, start, incident);
+  // The triangles' edges by their lower vertex, in compressed rows: (higher vertex, triangle),
+  // triangles ascending. A triangle with distinct corners holds an edge {a, b} exactly when it
+  // holds both a and b.
+  std::vector<int> start(num_vertices + 1, 0);
+  for (int j = 0; j < num_triangles; ++j)
+    for (int q = 0; q < 3; ++q) ++start[std::min(triangles[3 * j + q], triangles[3 * j + (q + 1) % 3]) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> edges(2 * static_cast<std::size_t>(start[num_vertices]));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int j = 0; j < num_triangles; ++j)
+      for (int q = 0; q < 3; ++q) {
+        const int a = triangles[3 * j + q], b = triangles[3 * j + (q + 1) % 3];
+        const int at = fill[std::min(a, b)]++;
+        edges[2 * at] = std::max(a, b);
+        edges[2 * at + 1] = j;
+      }
+  }
   TriangleAdjacency adjacency;
   adjacency.start.reserve(num_triangles + 1);
   adjacency.neighbour.reserve(3 * static_cast<std::size_t>(num_triangles));
   adjacency.start.push_back(0);
   for (int j = 0; j < num_triangles; ++j) {
-    const int* t = triangles + 3 * j;
     for (int q = 0; q < 3; ++q) {
-      const int a = t[q];
-      const int b = t[(q + 1) % 3];
-      // Triangles around a that also contain b share the edge (a, b).
-      for (int s = start[a]; s < start[a + 1]; ++s) {
-        const int other = incident[s];
-        if (other == j) continue;
-        const int* u = triangles + 3 * other;
-        if (u[0] == b || u[1] == b || u[2] == b) adjacency.neighbour.push_back(other);
-      }
+      const int a = triangles[3 * j + q], b = triangles[3 * j + (q + 1) % 3];
+      const int low = std::min(a, b), high = std::max(a, b);
+      // The other triangles on the edge (a, b), ascending.
+      for (int e = start[low]; e < start[low + 1]; ++e)
+        if (edges[2 * e] == high && edges[2 * e + 1] != j) adjacency.neighbour.push_back(edges[2 * e + 1]);
     }
     adjacency.start.push_back(static_cast<int>(adjacency.neighbour.size()));
   }
   return adjacency;
+}
+
+TriangleComponents triangle_components(const TriangleAdjacency& adjacency) {
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
+  TriangleComponents components;
+  components.component_of.assign(m, -1);
+  std::vector<int> queue;
+  queue.reserve(m);
+  for (int start = 0; start < m; ++start) {
+    if (components.component_of[start] >= 0) continue;
+    const int id = components.count++;
+    components.component_of[start] = id;
+    queue.assign(1, start);
+    for (std::size_t head = 0; head < queue.size(); ++head)
+      for (int s = adjacency.start[queue[head]]; s < adjacency.start[queue[head] + 1]; ++s) {
+        const int n = adjacency.neighbour[s];
+        if (components.component_of[n] < 0) {
+          components.component_of[n] = id;
+          queue.push_back(n);
+        }
+      }
+  }
+  return components;
 }
 
 }  // namespace meshik

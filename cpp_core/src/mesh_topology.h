@@ -26,4 +26,12 @@ struct TriangleAdjacency {
 // triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)).
 TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices);
 
+// Connected components of the triangles through their adjacency.
+struct TriangleComponents {
+  std::vector<int> component_of;  // #F: component id in [0, count), numbered by least triangle
+  int count = 0;
+};
+
+TriangleComponents triangle_components(const TriangleAdjacency& adjacency);
+
 }  // namespace meshik

@@ -2,91 +2,42 @@
 #include "rotation_branches.h"
 
 #include <cmath>
+#include <functional>
+#include <queue>
 #include <tuple>
-#include <utility>
 #include <vector>
+
+#include "safe_basins.h"
 
 namespace meshik {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
+constexpr double kPi = 3.1415926535897932384626433832795;
+constexpr double kTwoPi = 2 * kPi;
 // Below this angle a rotation is the identity to working precision and its axis is meaningless.
 constexpr double kIdentityAngle = 1e-12;
+// The branch of a principal log p (angle theta, axis a) closest to a reference r is p itself
+// when |a . r - theta| < pi (the best k is then 0). Below this bound that holds with room for
+// the rounding of the norms, the dot product and the division (a few ulps of pi).
+constexpr double kSafeOffset = kPi - 1e-9;
+// Below this angle the axis is not trusted: the bound is taken as theta + |r|.
+constexpr double kSmallAngle = 1e-6;
+// Distance thresholds of the nested basins (safe_basins.h) in which the spanning tree is
+// skipped where it cannot change a branch. The distance is about the squared angle between
+// neighbouring rotations; on the elephant's examples about a third, then a hundredth of the
+// edges are longer than these. Any increasing values give the same branches, only the time
+// differs (on the elephant these two beat four levels from 1e-4 to 3e-2, and one at 1).
+const std::vector<double> kBasinThresholds = {1e-3, 1e-1};
 
-// Prim's frontier: the triangles next to the tree, each with its best edge into the tree
-// (distance, tree triangle), in a binary heap ordered by (distance, from, to), position-indexed
-// so an edge found shorter lowers its triangle's key in place. The keys live in the heap's
-// entries, so sifting reads no other array.
-class Frontier {
- public:
-  explicit Frontier(int m) : position_(m, -1) {}
-
-  bool empty() const { return heap_.empty(); }
-
-  // Offers the edge (distance, from) to triangle `to`, not in the tree: kept if it is the
-  // triangle's first or better than its current edge.
-  void offer(int to, double distance, int from) {
-    const Entry entry{distance, from, to};
-    int at = position_[to];
-    if (at < 0) {
-      at = static_cast<int>(heap_.size());
-      heap_.push_back(entry);
-    } else if (!less(entry, heap_[at])) {
-      return;
-    }
-    sift_up(at, entry);
-  }
-
-  // Removes the triangle with the least (distance, from, to); returns it and its tree neighbour.
-  std::pair<int, int> pop() {
-    const Entry top = heap_.front();
-    position_[top.to] = -1;
-    const Entry last = heap_.back();
-    heap_.pop_back();
-    if (!heap_.empty()) sift_down(0, last);
-    return {top.to, top.from};
-  }
-
- private:
-  struct Entry {
-    double distance;
-    int from, to;
-  };
-  static bool less(const Entry& a, const Entry& b) {
-    return std::tie(a.distance, a.from, a.to) < std::tie(b.distance, b.from, b.to);
-  }
-  void place(int at, const Entry& entry) {
-    heap_[at] = entry;
-    position_[entry.to] = at;
-  }
-  // Puts entry at `at` or above.
-  void sift_up(int at, const Entry& entry) {
-    while (at > 0) {
-      const int parent = (at - 1) / 2;
-      if (!less(entry, heap_[parent])) break;
-      place(at, heap_[parent]);
-      at = parent;
-    }
-    place(at, entry);
-  }
-  // Puts entry at `at` or below.
-  void sift_down(int at, const Entry& entry) {
-    const int size = static_cast<int>(heap_.size());
-    for (;;) {
-      int child = 2 * at + 1;
-      if (child >= size) break;
-      if (child + 1 < size && less(heap_[child + 1], heap_[child])) ++child;
-      if (!less(heap_[child], entry)) break;
-      place(at, heap_[child]);
-      at = child;
-    }
-    place(at, entry);
-  }
-
-  std::vector<Entry> heap_;
-  std::vector<int> position_;  // the heap slot of each triangle, -1 when not in the heap
-};
+// Whether closest_log_branch keeps both principal logs (angles angle_a, angle_b) principal, each
+// taken with the other as the reference.
+bool keeps_principal(const Eigen::Vector3d& a, double angle_a, const Eigen::Vector3d& b, double angle_b) {
+  if (angle_a + angle_b < kSafeOffset) return true;  // |a . r - theta| <= theta + |r|
+  if (angle_a < kSmallAngle || angle_b < kSmallAngle) return false;
+  const double dot = a.dot(b);
+  return std::abs(dot / angle_a - angle_a) < kSafeOffset && std::abs(dot / angle_b - angle_b) < kSafeOffset;
+}
 
 }  // namespace
 
@@ -104,6 +55,7 @@ Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
   // |(theta + 2 pi k) axis - reference| is smallest when theta + 2 pi k is closest to
   // axis . reference.
   const double k = std::round((axis.dot(reference) - theta) / kTwoPi);
+  if (k == 0.0) return principal;
   return (theta + kTwoPi * k) * axis;
 }
 
@@ -118,46 +70,123 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
       distances[s] = rotation_distance(rotations[j], rotations[adjacency.neighbour[s]]);
 }
 
-void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const double* distances,
-                                    std::vector<Eigen::Vector3d>& logs) {
+std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                                const TriangleComponents& components, const double* distances,
+                                                std::vector<Eigen::Vector3d>& logs) {
   const int m = static_cast<int>(logs.size());
-  // Prim's algorithm: grow a tree from the least rotated triangle of each component (least
-  // principal angle, then least index), always across the edge whose two rotations are closest
-  // (ties: the least tree triangle, then the least new one), so that a branch is only ever
-  // copied between nearly equal rotations.
-  std::vector<char> seen(m, 0);
-  std::vector<int> component;
-  Frontier frontier(m);
-  for (int start = 0; start < m; ++start) {
-    if (seen[start]) continue;
-    // The component of start (breadth first) and its root.
-    component.assign(1, start);
-    seen[start] = 1;
-    int root = start;
-    double root_angle = logs[start].norm();
-    for (size_t head = 0; head < component.size(); ++head) {
-      const int j = component[head];
-      const double angle = logs[j].norm();
-      if (std::tie(angle, j) < std::tie(root_angle, root)) root = j, root_angle = angle;
-      for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s)
-        if (!seen[adjacency.neighbour[s]]) {
-          seen[adjacency.neighbour[s]] = 1;
-          component.push_back(adjacency.neighbour[s]);
-        }
-    }
-    int joined = root;
-    for (;;) {
-      for (int s = adjacency.start[joined]; s < adjacency.start[joined + 1]; ++s) {
-        const int to = adjacency.neighbour[s];
-        if (seen[to] != 2) frontier.offer(to, distances[s], joined);
-      }
-      seen[joined] = 2;  // in the tree
-      if (frontier.empty()) break;
-      const auto [to, from] = frontier.pop();
-      logs[to] = closest_log_branch(logs[to], logs[from]);
-      joined = to;
+  // The unsafe edges, along which a branch could leave the principal one (both logs principal):
+  // one end at least is turned by half the safe offset or more.
+  // The least rotated triangle of each component (the least index among equals) is its root.
+  std::vector<int> unsafe, root(components.count, -1);
+  std::vector<double> root_angle(components.count);
+  for (int a = 0; a < m; ++a) {
+    const double angle_a = logs[a].norm();
+    const int c = components.component_of[a];
+    if (root[c] < 0 || angle_a < root_angle[c]) root[c] = a, root_angle[c] = angle_a;
+    if (angle_a < 0.5 * kSafeOffset) continue;
+    for (int s = adjacency.start[a]; s < adjacency.start[a + 1]; ++s) {
+      const int b = adjacency.neighbour[s];
+      if (!keeps_principal(logs[a], angle_a, logs[b], logs[b].norm())) unsafe.insert(unsafe.end(), {a, b});
     }
   }
+  std::vector<int> moved;
+  if (unsafe.empty()) return moved;  // every log keeps its principal branch, whatever the tree
+  SafeBasins basins = safe_basins(adjacency, distances, kBasinThresholds, unsafe);
+  // Only the components with an unsafe edge grow a tree (from their roots, which keep their
+  // principal logs): the others keep all their principal logs.
+  std::vector<char> grows(components.count, 0);
+  for (size_t p = 0; p < unsafe.size(); p += 2) grows[components.component_of[unsafe[p]]] = 1;
+
+  // Prim's algorithm: grow a tree from each root, always across the edge whose two rotations
+  // are closest (ties: the least tree triangle, then the least new one), so that a branch is only
+  // ever copied between nearly equal rotations. A basin is added whole before any edge leaving it
+  // (safe_basins.h): where the tree enters a safe basin from a principal log across a safe edge,
+  // every triangle of it keeps its principal log whatever the tree inside, and the basin joins
+  // at once. Entered otherwise, its triangles are marked (safe level -1) to be added one by one.
+  enum : char { kOutside, kPrincipal, kOtherBranch };
+  std::vector<char> state(m, kOutside);
+  // The edges offered from the tree, (distance, tree triangle, triangle) least first; those whose
+  // triangle has joined since are passed over when they come up.
+  using Edge = std::tuple<double, int, int>;
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
+  std::vector<int> queue(m), leaving;
+  // Raw pointers: the loops' stores could otherwise alias the vectors' own fields.
+  const int* start = adjacency.start.data();
+  const int* neighbour = adjacency.neighbour.data();
+  const signed char* edge_level = basins.edge_level.data();
+  char* in_state = state.data();
+  const auto offer_edges_of = [&](int j) {
+    for (int s = start[j]; s < start[j + 1]; ++s)
+      if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], j, neighbour[s]);
+  };
+  // Adds the basin of x at `level` to the tree with its principal logs (x outside the tree, the
+  // basin not entered), and offers the edges leaving it.
+  const auto join_basin = [&](int x, int level) {
+    int* const basin = queue.data();
+    int size = 1;
+    basin[0] = x;
+    leaving.clear();
+    in_state[x] = kPrincipal;
+    for (int head = 0; head < size; ++head) {
+      const int j = basin[head];
+      for (int s = start[j]; s < start[j + 1]; ++s) {
+        const int n = neighbour[s];
+        if (in_state[n] != kOutside) continue;
+        if (edge_level[s] <= level) {
+          in_state[n] = kPrincipal;
+          basin[size++] = n;
+        } else {
+          leaving.insert(leaving.end(), {j, s});
+        }
+      }
+    }
+    for (size_t p = 0; p < leaving.size(); p += 2) {
+      const int s = leaving[p + 1];
+      if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], leaving[p], neighbour[s]);
+    }
+  };
+  // Marks the triangles of x's basin at `level` (x outside the tree, the basin not entered) to be
+  // added one by one.
+  const auto unmark_basin = [&](int x, int level) {
+    int* const basin = queue.data();
+    int size = 1;
+    basin[0] = x;
+    basins.safe_level[x] = -1;
+    for (int head = 0; head < size; ++head)
+      for (int s = start[basin[head]]; s < start[basin[head] + 1]; ++s)
+        if (edge_level[s] <= level && basins.safe_level[neighbour[s]] >= 0) {
+          basins.safe_level[neighbour[s]] = -1;
+          basin[size++] = neighbour[s];
+        }
+  };
+  // Adds x to the tree, reached from `from` (-1 for a root).
+  const auto join = [&](int x, int from) {
+    const int level = basins.safe_level[x];
+    if (level >= 0) {
+      // x enters its basin at `level`: were the basin entered, x would be in the tree or marked.
+      if (from < 0 ||
+          (state[from] == kPrincipal && keeps_principal(logs[from], logs[from].norm(), logs[x], logs[x].norm()))) {
+        join_basin(x, level);
+        return;
+      }
+      unmark_basin(x, level);
+    }
+    const Eigen::Vector3d principal = logs[x];
+    if (from >= 0) logs[x] = closest_log_branch(principal, logs[from]);
+    state[x] = logs[x] == principal ? kPrincipal : kOtherBranch;
+    if (state[x] == kOtherBranch) moved.push_back(x);
+    offer_edges_of(x);
+  };
+  for (int c = 0; c < components.count; ++c) {
+    if (!grows[c]) continue;
+    join(root[c], -1);
+    while (!frontier.empty()) {
+      const auto [distance, from, to] = frontier.top();
+      frontier.pop();
+      if (state[to] == kOutside) join(to, from);
+    }
+  }
+  return moved;
 }
 
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
@@ -165,7 +194,7 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                     std::vector<Eigen::Vector3d>& logs) {
   std::vector<double> distances(adjacency.neighbour.size());
   rotation_edge_distances(adjacency, rotations.data(), 0, static_cast<int>(rotations.size()), distances.data());
-  choose_consistent_log_branches(adjacency, distances.data(), logs);
+  choose_consistent_log_branches(adjacency, triangle_components(adjacency), distances.data(), logs);
 }
 
 }  // namespace meshik

@@ -17,7 +17,8 @@
 namespace meshik {
 
 // The logarithm of the rotation exp(principal) closest to reference: (theta + 2 pi k) axis with the
-// best integer k. principal: a log with |principal| <= pi; reference: any rotation vector.
+// best integer k (principal itself when k = 0). principal: a log with |principal| <= pi;
+// reference: any rotation vector.
 Eigen::Vector3d closest_log_branch(const Eigen::Vector3d& principal,
                                    const Eigen::Vector3d& reference);
 
@@ -36,9 +37,15 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
 // edge adjacency (Prim's, ties broken by the lower tree triangle, then the lower new one) from the
 // least rotated triangle of each component, which keeps its principal log, and gives every
 // triangle added the branch closest to the log of the tree neighbour it was reached from, so
-// branches are only copied between nearly equal rotations.
-void choose_consistent_log_branches(const TriangleAdjacency& adjacency, const double* distances,
-                                    std::vector<Eigen::Vector3d>& logs);
+// branches are only copied between nearly equal rotations. Where the tree cannot change a branch
+// (a basin of close rotations whose angles are small enough, entered from a principal log) the
+// basin's triangles keep their principal logs without the tree being grown through them: the
+// branches are those of the whole tree, bit for bit.
+// components: triangle_components(adjacency). Returns the triangles whose logs are no longer the
+// principal ones.
+std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
+                                                const TriangleComponents& components, const double* distances,
+                                                std::vector<Eigen::Vector3d>& logs);
 
 // The same from the rotations (#F) themselves.
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,

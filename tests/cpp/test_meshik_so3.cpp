@@ -283,6 +283,125 @@ TEST(RotationBranches, PrimsTreeWithAnIndexedFrontierGivesTheReferenceBranchesBi
   }
 }
 
+// Appends the triangles of a strip of rows x cols quads (two triangles each, a quad's pair
+// consecutive, column by column within a row), its vertices numbered from `base`; returns the
+// strip's vertex count.
+int append_strip(int rows, int cols, int base, std::vector<int>& triangles) {
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const int v = base + r * (cols + 1) + c;
+      triangles.insert(triangles.end(), {v, v + 1, v + cols + 2, v, v + cols + 2, v + cols + 1});
+    }
+  return (rows + 1) * (cols + 1);
+}
+
+// Chooses the branches of the logs of `rotations` (one per triangle of the adjacency) with
+// choose_consistent_log_branches and with the reference; expects the same bits. Returns the
+// chosen logs.
+std::vector<Eigen::Vector3d> expect_reference_branches(const meshik::TriangleAdjacency& adjacency,
+                                                       const std::vector<Eigen::Matrix3d>& rotations) {
+  std::vector<Eigen::Vector3d> logs;
+  for (const Eigen::Matrix3d& r : rotations) logs.push_back(so3_log(r));
+  std::vector<Eigen::Vector3d> expected = logs;
+  reference_log_branches(adjacency, rotations, expected);
+  meshik::choose_consistent_log_branches(adjacency, rotations, logs);
+  for (size_t j = 0; j < logs.size(); ++j) EXPECT_EQ(logs[j], expected[j]) << "triangle " << j;
+  return logs;
+}
+
+TEST(RotationBranches, ABasinOfSmallRotationsReachedThroughAFullTurnTakesTheTurnedBranch) {
+  // A strip twisted about z: still for 20 columns, turned from 0 to 2 pi - 0.3 over 40, then
+  // still again. The last plateau's principal logs (0.3 about -z) are far from any half turn and
+  // close to each other (the same rotation up to a small wobble drawn from three, so distances
+  // tie), a basin on every level; the tree reaches it through the turn, so its branch is
+  // 2 pi - 0.3 about z: it must not be kept principal.
+  const int rows = 4, cols = 120;
+  std::vector<int> triangles;
+  const int vertices = append_strip(rows, cols, 0, triangles);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  const double turned = 2 * kPi - 0.3;
+  std::vector<Eigen::Matrix3d> rotations;
+  for (int j = 0; j < m; ++j) {
+    const int c = (j / 2) % cols;
+    const double angle = c < 20 ? 0.0 : c < 60 ? turned * (c - 20) / 40.0 : turned;
+    const Eigen::Vector3d wobble = 1e-3 * Eigen::Vector3d(j % 3, (j + 1) % 3, 0.0);
+    rotations.push_back(so3_exp(Eigen::Vector3d(0, 0, angle)) * so3_exp(wobble));
+  }
+  const std::vector<Eigen::Vector3d> logs = expect_reference_branches(adjacency, rotations);
+  for (int j = 0; j < m; ++j)
+    if ((j / 2) % cols >= 60) EXPECT_NEAR(logs[j].z(), turned, 1e-2) << j;
+}
+
+TEST(RotationBranches, ComponentsFarFromHalfTurnsKeepPrincipalLogsAndTheOthersFollowTheReference) {
+  // Three strips: small rotations (no log can move: the tree is skipped), a slow turn beyond a
+  // half turn with stretches held still (basins entered across the half turn), and rotations
+  // either side of a half turn about axes that wobble (principal logs flip between neighbours).
+  std::vector<int> triangles;
+  int vertices = 0;
+  for (int strip = 0; strip < 3; ++strip) vertices += append_strip(6, 60, vertices, triangles);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const int per_strip = m / 3;
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> pick(0, 3);
+  std::vector<Eigen::Matrix3d> rotations;
+  for (int j = 0; j < m; ++j) {
+    const int strip = j / per_strip, c = (j / 2) % 60;
+    const Eigen::Vector3d wobble = 1e-2 * Eigen::Vector3d(pick(random), pick(random), pick(random));
+    if (strip == 0) {
+      rotations.push_back(so3_exp(Eigen::Vector3d(0.5 * c / 60.0, 0.2, 0.0) + wobble));
+    } else if (strip == 1) {
+      const double angle = 1.4 * kPi * std::min(1.0, std::floor(c / 5.0) / 8.0);  // steps of 0.175 pi
+      rotations.push_back(so3_exp(angle * Eigen::Vector3d(0.1, 0.0, 1.0).normalized()) * so3_exp(0.1 * wobble));
+    } else {
+      rotations.push_back(so3_exp((kPi + 0.01 * (pick(random) - 1.5)) * (Eigen::Vector3d(0.0, 0.0, 1.0) + wobble).normalized()));
+    }
+  }
+  const std::vector<Eigen::Vector3d> logs = expect_reference_branches(adjacency, rotations);
+  int moved[3] = {0, 0, 0};
+  for (int j = 0; j < m; ++j) moved[j / per_strip] += logs[j] != so3_log(rotations[j]);
+  EXPECT_EQ(moved[0], 0);
+  EXPECT_GT(moved[1], 0);
+  EXPECT_GT(moved[2], 0);
+}
+
+TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangles) {
+  // The basins (safe_basins.h) read each edge from either side: its length must not depend on
+  // the side.
+  std::vector<int> triangles;
+  const int vertices = append_strip(5, 9, 0, triangles);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  std::mt19937 random(13);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Matrix3d> rotations;
+  for (int j = 0; j < m; ++j) rotations.push_back(so3_exp(Eigen::Vector3d(normal(random), normal(random), normal(random))));
+  std::vector<double> whole(adjacency.neighbour.size(), -1.0), split(adjacency.neighbour.size(), -1.0);
+  meshik::rotation_edge_distances(adjacency, rotations.data(), 0, m, whole.data());
+  for (int first = m - 7; first > -7; first -= 7)  // ranges from the last down, as threads may
+    meshik::rotation_edge_distances(adjacency, rotations.data(), std::max(first, 0), first + 7, split.data());
+  EXPECT_EQ(split, whole);
+  for (int j = 0; j < m; ++j)
+    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
+      const int n = adjacency.neighbour[s];
+      // Each entry holds the distance from either end.
+      EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[j], rotations[n])) << j << " " << n;
+      EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[n], rotations[j])) << j << " " << n;
+    }
+}
+
+TEST(RotationBranches, TriangleComponentsAreNumberedByTheirLeastTriangle) {
+  std::vector<int> triangles;
+  int vertices = append_strip(1, 2, 0, triangles);  // triangles 0-3
+  vertices += append_strip(1, 1, vertices, triangles);  // triangles 4-5
+  triangles.insert(triangles.end(), {0, 1, vertices});  // shares the edge (0, 1) with triangle 0
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), 7, vertices + 1);
+  const meshik::TriangleComponents components = meshik::triangle_components(adjacency);
+  EXPECT_EQ(components.count, 2);
+  EXPECT_EQ(components.component_of, std::vector<int>({0, 0, 0, 0, 1, 1, 0}));
+}
+
 TEST(So3, BatchedPolarDecompositionMatchesTheSvdOne) {
   std::mt19937 random(3);
   std::normal_distribution<double> normal;
