@@ -27,37 +27,43 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
 }
 
 // (M - I) U for a batch: m, 9 rows of kLanes (M row-major), basis U, 6 rows of kLanes (3 by 2
-// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes).
-MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, double* out) {
+// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes),
+// rounded to Stored.
+template <typename Stored>
+MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, Stored* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 2; ++c)
       for (int l = 0; l < kLanes; ++l) {
         double sum = 0.0;
         for (int q = 0; q < 3; ++q) sum += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
-        out[(2 * r + c) * kLanes + l] = sum;
+        out[(2 * r + c) * kLanes + l] = static_cast<Stored>(sum);
       }
 }
 
-// Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
-// rows of 2 kLanes floats, the first batch's lanes first: one pair of kCurvatureBatches.
-MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
+// Copies `rows` rows of kLanes values (double: rounded, or float) from each of two batches (second
+// may be null: zeros) into rows of 2 kLanes floats, the first batch's lanes first: one pair of
+// kCurvatureBatches.
+template <typename Value>
+MESHIK_LANE_INLINE void float_pair(const Value* first, const Value* second, int rows, float* out) {
   for (int row = 0; row < rows; ++row) {
     for (int l = 0; l < kLanes; ++l) out[row * 2 * kLanes + l] = static_cast<float>(first[row * kLanes + l]);
     for (int l = 0; l < kLanes; ++l)
       out[row * 2 * kLanes + kLanes + l] = second != nullptr ? static_cast<float>(second[row * kLanes + l]) : 0.0f;
   }
 }
-static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
+static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
-// gradients, for every example, on `team` threads. Its working arrays (rotations, logs and edge
-// distances of a group of examples) are freed on return.
+// gradients, for every example, on `team` threads, as Stored values (features' precision). Its
+// working arrays (rotations, logs and edge distances of a group of examples) are freed on return.
+template <typename Stored>
 void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& adjacency, const int* triangles,
                          const std::vector<const double*>& examples, const ProgressCallback& progress,
                          bool consistent_branches, int team, ExampleFeatures& features) {
   const int m = features.num_triangles;
   const int k = features.num_examples;
+  FeatureValues<Stored>& values = values_of<Stored>(features);
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
   // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
   const int group_size = std::max(1, std::min(team, k));
@@ -81,8 +87,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           polar_and_log_batch(t, count, rotation, stretch, log);
           const size_t block = static_cast<size_t>(batch) * k + i;
           const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
-          minus_identity_on_plane(stretch, basis, features.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
-          minus_identity_on_plane(t, basis, features.linear.data() + 6 * kLanes * block);
+          minus_identity_on_plane(stretch, basis, values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
+          minus_identity_on_plane(t, basis, values.linear.data() + 6 * kLanes * block);
           for (int l = 0; l < count; ++l) {
             for (int e = 0; e < 9; ++e) rotations[first + l](e / 3, e % 3) = rotation[e][l];
             logs[g][first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
@@ -101,8 +107,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       if (consistent_branches) choose_consistent_log_branches(adjacency, distances[g].data(), logs[g]);
       const int i = group + g;
       for (int j = 0; j < m; ++j) {
-        double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
-        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[g][j](r);
+        Stored* block = values.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
+        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = static_cast<Stored>(logs[g][j](r));
       }
     }
     for (int i = group; i < group + members; ++i)
@@ -117,23 +123,30 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress,
-                                         bool consistent_branches, int threads) {
+                                         bool consistent_branches, int threads, FeaturePrecision precision) {
   const int m = frames.num_triangles;
   const int k = static_cast<int>(examples.size());
   ExampleFeatures features;
   features.num_examples = k;
   features.num_triangles = m;
   features.num_batches = (m + kLanes - 1) / kLanes;
+  features.precision = precision;
   const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
-  assign_on_huge_pages(features.nonlinear, 9 * slots * k, 0.0);
-  assign_on_huge_pages(features.linear, 6 * slots * k, 0.0);
+  visit_feature_values(features, [&](auto& values) {
+    using Stored = typename std::decay_t<decltype(values)>::Value;
+    assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0));
+    assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0));
+  });
   assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0);
   for (int j = 0; j < m; ++j)
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);
 
-  fill_example_blocks(frames, adjacency, triangles, examples, progress, consistent_branches, thread_count(threads),
-                      features);
+  const int team = thread_count(threads);
+  if (precision == FeaturePrecision::kSingle)
+    fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
+  else
+    fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
   return features;
 }
 
@@ -145,7 +158,9 @@ constexpr int L = kLanes;
 constexpr int kPrefetchDistance = 4;
 
 // The helpers below work on N lanes of Real: N = kLanes doubles (one batch) for the blend, and
-// 2 kLanes floats (two batches) for the curvature. Lane-minor blocks have rows of N values.
+// 2 kLanes floats (two batches) for the curvature. Lane-minor blocks have rows of N values. The
+// features are read as Stored values (float or double) and widened to Real where they enter the
+// arithmetic.
 
 // The rotation of a nonlinear blend for N triangles: phi = sum_i w_i phi_i, its Rodrigues
 // coefficients and R = exp(phi) (row-major), per lane.
@@ -158,14 +173,14 @@ struct BatchRotation {
 };
 
 // Fills r for the triangles whose features (#E blocks of 9 rows) start at feature; weights w (#E).
-template <typename Real, int N>
-MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const double* w, int k, BatchRotation<Real, N>& r) {
+template <typename Real, int N, typename Stored>
+MESHIK_LANE_INLINE void blend_rotation(const Stored* feature, const double* w, int k, BatchRotation<Real, N>& r) {
   for (int d = 0; d < 3; ++d)
     for (int l = 0; l < N; ++l) r.phi[d][l] = 0;
   for (int i = 0; i < k; ++i) {
     const Real weight = static_cast<Real>(w[i]);
     for (int d = 0; d < 3; ++d)
-      for (int l = 0; l < N; ++l) r.phi[d][l] += weight * feature[(i * 9 + d) * N + l];
+      for (int l = 0; l < N; ++l) r.phi[d][l] += weight * static_cast<Real>(feature[(i * 9 + d) * N + l]);
   }
   for (int l = 0; l < N; ++l)
     r.theta_squared[l] = r.phi[0][l] * r.phi[0][l] + r.phi[1][l] * r.phi[1][l] + r.phi[2][l] * r.phi[2][l];
@@ -187,11 +202,11 @@ MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const double* w, int
 }
 
 // psi = J_l(phi) u per lane, u: 3 rows of lanes.
-template <typename Real, int N>
-MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation<Real, N>& r, const Real* u, Real psi[3][N]) {
+template <typename Real, int N, typename Stored>
+MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation<Real, N>& r, const Stored* u, Real psi[3][N]) {
   for (int l = 0; l < N; ++l) {
     const Real x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l];
-    const Real u0 = u[l], u1 = u[N + l], u2 = u[2 * N + l];
+    const Real u0 = static_cast<Real>(u[l]), u1 = static_cast<Real>(u[N + l]), u2 = static_cast<Real>(u[2 * N + l]);
     const Real c0 = y * u2 - z * u1, c1 = z * u0 - x * u2, c2 = x * u1 - y * u0;
     psi[0][l] = u0 + r.b[l] * c0 + r.c[l] * (y * c2 - z * c1);
     psi[1][l] = u1 + r.b[l] * c1 + r.c[l] * (z * c0 - x * c2);
@@ -200,10 +215,10 @@ MESHIK_LANE_INLINE void left_jacobian_times(const BatchRotation<Real, N>& r, con
 }
 
 // target = psi x m (column by column) + R d for 3 by 2 lane-minor blocks m, d (d may be null:
-// no R d term).
-template <typename Real, int N>
+// no R d term; its Stored values are widened to Real).
+template <typename Real, int N, typename Stored>
 MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation<Real, N>& r, const Real psi[3][N], const Real* m,
-                                           const Real* d, Real* target) {
+                                           const Stored* d, Real* target) {
   for (int row = 0; row < 3; ++row) {
     const int p = (row + 1) % 3, q = (row + 2) % 3;
     for (int col = 0; col < 2; ++col) {
@@ -213,8 +228,9 @@ MESHIK_LANE_INLINE void cross_plus_rotated(const BatchRotation<Real, N>& r, cons
       for (int l = 0; l < N; ++l) t[l] = psi[p][l] * mq[l] - psi[q][l] * mp[l];
       if (d == nullptr) continue;
       for (int l = 0; l < N; ++l)
-        t[l] += r.rot[3 * row][l] * d[col * N + l] + r.rot[3 * row + 1][l] * d[(2 + col) * N + l] +
-                r.rot[3 * row + 2][l] * d[(4 + col) * N + l];
+        t[l] += r.rot[3 * row][l] * static_cast<Real>(d[col * N + l]) +
+                r.rot[3 * row + 1][l] * static_cast<Real>(d[(2 + col) * N + l]) +
+                r.rot[3 * row + 2][l] * static_cast<Real>(d[(4 + col) * N + l]);
     }
   }
 }
@@ -249,11 +265,11 @@ MESHIK_LANE_INLINE Real dot_lane(const Real u[3][N], const Real v[3][N], int l) 
   return u[0][l] * v[0][l] + u[1][l] * v[1][l] + u[2][l] * v[2][l];
 }
 
-// The nonlinear blend of N triangles from their features (#E blocks of 9 rows) and plane basis
-// (6 rows): writes blend_batch's output (#E + 1 blocks of 6 rows of N) to out and leaves the
-// rotation in r.
-template <typename Real, int N>
-MESHIK_LANE_INLINE void blend_nonlinear(const Real* feature, const Real* basis, const double* w, int k, Real* out,
+// The nonlinear blend of N triangles from their features (#E blocks of 9 rows of Stored values)
+// and plane basis (6 rows): writes blend_batch's output (#E + 1 blocks of 6 rows of N) to out and
+// leaves the rotation in r.
+template <typename Real, int N, typename Stored>
+MESHIK_LANE_INLINE void blend_nonlinear(const Stored* feature, const Real* basis, const double* w, int k, Real* out,
                                         BatchRotation<Real, N>& r) {
   blend_rotation(feature, w, k, r);
   // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
@@ -261,7 +277,7 @@ MESHIK_LANE_INLINE void blend_nonlinear(const Real* feature, const Real* basis, 
   for (int e = 0; e < 6 * N; ++e) stretch[e] = basis[e];
   for (int i = 0; i < k; ++i) {
     const Real weight = static_cast<Real>(w[i]);
-    for (int e = 0; e < 6 * N; ++e) stretch[e] += weight * feature[(i * 9 + 3) * N + e];
+    for (int e = 0; e < 6 * N; ++e) stretch[e] += weight * static_cast<Real>(feature[(i * 9 + 3) * N + e]);
   }
   const Real zero[3][N] = {};
   cross_plus_rotated(r, zero, stretch, stretch, out);
@@ -346,24 +362,24 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
-}  // namespace
-
-MESHIK_SIMD_CLONES
-void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
-                 double* out) {
+// blend_batch on the features' values stored as Stored (values: those of features).
+template <typename Stored>
+MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const FeatureValues<Stored>& values,
+                                     FeatureSpace space, const double* w, int batch, double* out) {
   const int k = features.num_examples;
   const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
   if (space == FeatureSpace::kLinear) {
-    const double* lin = features.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
+    const Stored* lin = values.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
     for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
     for (int i = 0; i < k; ++i)
       for (int e = 0; e < 6 * L; ++e) {
-        out[e] += w[i] * lin[i * 6 * L + e];
-        out[(i + 1) * 6 * L + e] = lin[i * 6 * L + e];
+        const double value = static_cast<double>(lin[i * 6 * L + e]);
+        out[e] += w[i] * value;
+        out[(i + 1) * 6 * L + e] = value;
       }
     return;
   }
-  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  const Stored* feature = values.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   if (batch + kPrefetchDistance < features.num_batches) {
     prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
     prefetch_values(basis + kPrefetchDistance * 6 * L, 6 * L);
@@ -372,20 +388,42 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
   blend_nonlinear(feature, basis, w, k, out, r);
 }
 
+// Asks for the nonlinear features (values of `features`, as Stored) kCurvatureBatches
+// kPrefetchDistance batches ahead of `batch`, and copies those of batch and batch + 1 (zeros if
+// it does not exist) into feature: 9 #E rows of 2 kLanes floats (float_pair).
+template <typename Stored>
+MESHIK_LANE_INLINE void float_feature_pair(const ExampleFeatures& features, const FeatureValues<Stored>& values,
+                                           int batch, float* feature) {
+  const int k = features.num_examples;
+  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
+  const Stored* batch_feature = values.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches)
+    prefetch_values(batch_feature + kCurvatureBatches * kPrefetchDistance * k * 9 * L,
+                    static_cast<size_t>(kCurvatureBatches) * k * 9 * L);
+  float_pair(batch_feature, batch + 1 < features.num_batches ? batch_feature + k * 9 * L : nullptr, 9 * k, feature);
+}
+
+}  // namespace
+
+MESHIK_SIMD_CLONES
+void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
+                 double* out) {
+  // An explicit branch, not visit_feature_values: a lambda would not share this function's clones.
+  if (features.precision == FeaturePrecision::kSingle)
+    blend_stored(features, features.single, space, w, batch, out);
+  else
+    blend_stored(features, features.full, space, w, batch, out);
+}
+
 MESHIK_SIMD_CLONES
 void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch, const double* residual,
                             float* scratch, double* curvature_lanes) {
   constexpr int N = kCurvatureBatches * L;
   const int k = features.num_examples;
   const bool has_second = batch + 1 < features.num_batches;
-  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
-  const double* batch_feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   const double* batch_basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches) {
-    prefetch_values(batch_feature + kCurvatureBatches * kPrefetchDistance * k * 9 * L,
-                    static_cast<size_t>(kCurvatureBatches) * k * 9 * L);
+  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches)
     prefetch_values(batch_basis + kCurvatureBatches * kPrefetchDistance * 6 * L, kCurvatureBatches * 6 * L);
-  }
   // scratch: residual (6 rows), features (9 #E rows), plane basis (6 rows), blend output
   // ((#E + 1) 6 rows), curvature (#E #E rows).
   float* narrow_residual = scratch;
@@ -393,9 +431,12 @@ void add_residual_curvature(const ExampleFeatures& features, const double* w, in
   float* basis = feature + k * 9 * N;
   float* out = basis + 6 * N;
   float* curvature = out + (k + 1) * 6 * N;
-  narrow_pair(residual, has_second ? residual + 6 * L : nullptr, 6, narrow_residual);
-  narrow_pair(batch_feature, has_second ? batch_feature + k * 9 * L : nullptr, 9 * k, feature);
-  narrow_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
+  float_pair(residual, has_second ? residual + 6 * L : nullptr, 6, narrow_residual);
+  if (features.precision == FeaturePrecision::kSingle)
+    float_feature_pair(features, features.single, batch, feature);
+  else
+    float_feature_pair(features, features.full, batch, feature);
+  float_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
   for (int e = 0; e < k * k * N; ++e) curvature[e] = 0.0f;
   BatchRotation<float, N> r;
   blend_nonlinear(feature, basis, w, k, out, r);
