@@ -86,12 +86,13 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          bool consistent_branches = true, int threads = 0,
                                          FeaturePrecision precision = FeaturePrecision::kSingle);
 
-// Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each.
-inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * kLanes; }
+// Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each,
+// then room for the batch's features widened to double (9 rows per example).
+inline int blend_batch_size(int num_examples) { return (6 * (num_examples + 1) + 9 * num_examples) * kLanes; }
 
 // Blends the triangles of `batch` with weights w (#E). Writes to out (blend_batch_size doubles),
 // for q = 0 the targets F_j(w) and for q = 1 .. #E the derivatives dF_j/dw_{q-1}, each 3 by 2
-// row-major: out[((q 6) + row) kLanes + lane].
+// row-major: out[((q 6) + row) kLanes + lane]; the rest of out is scratch.
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out);
 
