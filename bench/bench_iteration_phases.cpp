@@ -8,7 +8,8 @@
 //     backward  = the backward solve of the 3 coordinates of x0,
 //     rest      = evaluate - forward - backward: blend and scatter of the features, the outer
 //                 products of the forward-solved rows, the pose and its residuals,
-//   second    = the second-order term (one more pass over the triangles, once per step taken).
+//   second    = the second-order term (one more pass over the triangles, once per step taken),
+//   blend     = the blend of every batch of triangles alone (part of rest; always on one thread).
 // An iteration is about evaluate + second; the whole pose adds the first evaluation.
 // Each team runs with the examples' features stored in single precision (the library's default)
 // and in double (the comparison), all four taking turns.
@@ -102,6 +103,12 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
                           targets.data(), buffers, variants[v].team)
         .evaluate(weights.data(), true, at);
   });
+  std::vector<double> blend_out(meshik::blend_batch_size(set.num_examples));
+  const auto blend = alternate_medians(repeats, variants.size(), [&](size_t v) {
+    const meshik::ExampleFeatures& features = variants[v].set->features;
+    for (int batch = 0; batch < features.num_batches; ++batch)
+      meshik::blend_batch(features, meshik::FeatureSpace::kNonlinear, weights.data(), batch, blend_out.data());
+  });
   std::vector<double> second_order;
   for (const Variant& variant : variants) {
     meshik::PoseEvaluator evaluator(*variant.set, *variant.system, meshik::FeatureSpace::kNonlinear, 0.0,
@@ -130,9 +137,9 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
   const auto copy = alternate_medians(repeats, variants.size(), [&](size_t) { std::copy(b.begin(), b.end(), x.begin()); });
   for (size_t v = 0; v < variants.size(); ++v) {
     const double forward_ms = forward[v] - copy[v], backward_ms = backward[v] - copy[v];
-    std::printf("%-9s %5d %9s | %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %9.2f\n", name.c_str(), variants[v].team,
-                variants[v].precision, factor[v], evaluate[v], forward_ms, backward_ms,
-                evaluate[v] - forward_ms - backward_ms, second_order[v], evaluate[v] + second_order[v]);
+    std::printf("%-9s %5d %9s | %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %9.2f | %8.2f\n", name.c_str(),
+                variants[v].team, variants[v].precision, factor[v], evaluate[v], forward_ms, backward_ms,
+                evaluate[v] - forward_ms - backward_ms, second_order[v], evaluate[v] + second_order[v], blend[v]);
   }
   std::fflush(stdout);
 }
@@ -152,8 +159,8 @@ int main(int argc, char** argv) {
   std::printf("One Gauss-Newton iteration by phase (median of %d runs, ms), nonlinear space, 16 handles,\n"
               "on 1 thread and on all %d cores, features stored in single and in double precision, alternately:\n\n",
               repeats, teams[1]);
-  std::printf("%-9s %5s %9s | %8s | %8s %8s %8s %8s | %8s | %9s\n", "Mesh", "Team", "features", "factor", "evaluate", "forward",
-              "backward", "rest", "second", "iteration");
+  std::printf("%-9s %5s %9s | %8s | %8s %8s %8s %8s | %8s | %9s | %8s\n", "Mesh", "Team", "features", "factor", "evaluate",
+              "forward", "backward", "rest", "second", "iteration", "blend");
   for (const auto& [name, folder] : {std::pair<const char*, const char*>{"Horse", "horse-poses"},
                                      std::pair<const char*, const char*>{"Elephant", "elephant-poses"}}) {
     const fs::path dir = fs::path(data) / folder;
