@@ -8,8 +8,11 @@
 //     backward  = the backward solve of the 3 coordinates of x0,
 //     rest      = evaluate - forward - backward: blend and scatter of the features, the outer
 //                 products of the forward-solved rows, the pose and its residuals,
-//   second    = the second-order term (one more pass over the triangles, once per step taken).
+//   second    = the second-order term (one more pass over the triangles, once per step taken),
+//   blend     = the blend of every batch of triangles alone (part of rest; always on one thread).
 // An iteration is about evaluate + second; the whole pose adds the first evaluation.
+// Each team runs with the examples' features stored in single precision (the library's default)
+// and in double (the comparison), all four taking turns.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -39,13 +42,12 @@ double milliseconds_of(const std::function<void()>& work) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Medians (ms) of `repeats` runs of work(team) for each team in `teams`, the teams taking turns so
-// that all see the same load of the machine. Returns one median per team.
-std::vector<double> alternate_medians(int repeats, const std::vector<int>& teams,
-                                      const std::function<void(int)>& work) {
-  std::vector<std::vector<double>> times(teams.size());
+// Medians (ms) of `repeats` runs of work(v) for each v in 0 .. variants - 1, the variants taking
+// turns so that all see the same load of the machine. Returns one median per variant.
+std::vector<double> alternate_medians(int repeats, size_t variants, const std::function<void(size_t)>& work) {
+  std::vector<std::vector<double>> times(variants);
   for (int r = 0; r < repeats; ++r)
-    for (size_t t = 0; t < teams.size(); ++t) times[t].push_back(milliseconds_of([&] { work(teams[t]); }));
+    for (size_t v = 0; v < variants; ++v) times[v].push_back(milliseconds_of([&] { work(v); }));
   std::vector<double> medians;
   for (auto& list : times) {
     std::sort(list.begin(), list.end());
@@ -54,7 +56,15 @@ std::vector<double> alternate_medians(int repeats, const std::vector<int>& teams
   return medians;
 }
 
-// One data set's phases (see the header), per team.
+// One way to run the phases: a team and the example set whose features are stored in a precision.
+struct Variant {
+  int team;
+  const meshik::ExampleSet::Impl* set;
+  const meshik::PoseSystem* system;
+  const char* precision;
+};
+
+// One data set's phases (see the header), per team and feature precision.
 void time_phases(const std::string& name, const fs::path& dir, int repeats, const std::vector<int>& teams) {
   const auto rest = meshik_bench::read_obj((dir / "reference.obj").string());
   std::vector<std::vector<double>> examples;
@@ -63,8 +73,10 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
   for (const auto& e : examples) pointers.push_back(e.data());
   const std::vector<double> pose = meshik_bench::read_obj((dir / "5.obj").string()).vertices;
   const meshik::MeshView view{rest.vertices.data(), rest.num_vertices(), rest.triangles.data(), rest.num_triangles()};
-  const meshik::ExampleSet examples_set(view, pointers);
-  const meshik::ExampleSet::Impl& set = examples_set.impl();
+  const meshik::ExampleSet single_set(view, pointers, {}, 0, meshik::FeaturePrecision::kSingle);
+  const meshik::ExampleSet double_set(view, pointers, {}, 0, meshik::FeaturePrecision::kDouble);
+  // Both sets have the same internal order (it depends on the rest mesh only).
+  const meshik::ExampleSet::Impl& set = single_set.impl();
   const std::vector<int> user_handles = meshik_bench::farthest_point_handles(rest.vertices, 16);
   std::vector<int> handles;
   std::vector<double> targets;
@@ -72,19 +84,35 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
     handles.push_back(set.internal_of_vertex[v]);
     for (int c = 0; c < 3; ++c) targets.push_back(pose[3 * static_cast<size_t>(v) + c]);
   }
+  const meshik::PoseSystem single_system(set, handles);
+  const meshik::PoseSystem double_system(double_set.impl(), handles);
+  std::vector<Variant> variants;
+  for (int team : teams) {
+    variants.push_back({team, &set, &single_system, "single"});
+    variants.push_back({team, &double_set.impl(), &double_system, "double"});
+  }
 
-  const auto factor = alternate_medians(repeats, teams, [&](int team) { meshik::PoseSystem(set, handles, {}, team); });
-  const meshik::PoseSystem system(set, handles);
-  const Eigen::VectorXd weights = meshik::LinearStart(set, system).weights(targets.data(), 0.0);
+  const auto factor = alternate_medians(repeats, variants.size(), [&](size_t v) {
+    meshik::PoseSystem(*variants[v].set, handles, {}, variants[v].team);
+  });
+  const Eigen::VectorXd weights = meshik::LinearStart(set, single_system).weights(targets.data(), 0.0);
   meshik::EvaluationBuffers buffers;
   meshik::PoseEvaluation at;
-  const auto evaluate = alternate_medians(repeats, teams, [&](int team) {
-    meshik::PoseEvaluator(set, system, meshik::FeatureSpace::kNonlinear, 0.0, targets.data(), buffers, team)
+  const auto evaluate = alternate_medians(repeats, variants.size(), [&](size_t v) {
+    meshik::PoseEvaluator(*variants[v].set, *variants[v].system, meshik::FeatureSpace::kNonlinear, 0.0,
+                          targets.data(), buffers, variants[v].team)
         .evaluate(weights.data(), true, at);
   });
+  std::vector<double> blend_out(meshik::blend_batch_size(set.num_examples));
+  const auto blend = alternate_medians(repeats, variants.size(), [&](size_t v) {
+    const meshik::ExampleFeatures& features = variants[v].set->features;
+    for (int batch = 0; batch < features.num_batches; ++batch)
+      meshik::blend_batch(features, meshik::FeatureSpace::kNonlinear, weights.data(), batch, blend_out.data());
+  });
   std::vector<double> second_order;
-  for (int team : teams) {
-    meshik::PoseEvaluator evaluator(set, system, meshik::FeatureSpace::kNonlinear, 0.0, targets.data(), buffers, team);
+  for (const Variant& variant : variants) {
+    meshik::PoseEvaluator evaluator(*variant.set, *variant.system, meshik::FeatureSpace::kNonlinear, 0.0,
+                                    targets.data(), buffers, variant.team);
     std::vector<double> times;
     for (int r = 0; r < repeats; ++r) {
       evaluator.evaluate(weights.data(), true, at);
@@ -95,23 +123,23 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
   }
   const int columns = 3 * (set.num_examples + 1);
   const int stride = meshik::PoseSystem::padded_width(columns);
-  std::vector<double> x(static_cast<size_t>(system.num_rows()) * stride);
+  std::vector<double> x(static_cast<size_t>(single_system.num_rows()) * stride);
   for (size_t i = 0; i < x.size(); ++i) x[i] = 1.0 / (1.0 + static_cast<double>(i % 97));
   const std::vector<double> b = x;
-  const auto forward = alternate_medians(repeats, teams, [&](int team) {
+  const auto forward = alternate_medians(repeats, variants.size(), [&](size_t v) {
     std::copy(b.begin(), b.end(), x.begin());
-    system.forward_solve(x.data(), stride, columns, team);
+    variants[v].system->forward_solve(x.data(), stride, columns, variants[v].team);
   });
-  const auto backward = alternate_medians(repeats, teams, [&](int team) {
+  const auto backward = alternate_medians(repeats, variants.size(), [&](size_t v) {
     std::copy(b.begin(), b.end(), x.begin());
-    system.backward_solve(x.data(), stride, 3, team);
+    variants[v].system->backward_solve(x.data(), stride, 3, variants[v].team);
   });
-  const auto copy = alternate_medians(repeats, teams, [&](int) { std::copy(b.begin(), b.end(), x.begin()); });
-  for (size_t t = 0; t < teams.size(); ++t) {
-    const double forward_ms = forward[t] - copy[t], backward_ms = backward[t] - copy[t];
-    std::printf("%-9s %5d | %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %9.2f\n", name.c_str(), teams[t], factor[t],
-                evaluate[t], forward_ms, backward_ms, evaluate[t] - forward_ms - backward_ms, second_order[t],
-                evaluate[t] + second_order[t]);
+  const auto copy = alternate_medians(repeats, variants.size(), [&](size_t) { std::copy(b.begin(), b.end(), x.begin()); });
+  for (size_t v = 0; v < variants.size(); ++v) {
+    const double forward_ms = forward[v] - copy[v], backward_ms = backward[v] - copy[v];
+    std::printf("%-9s %5d %9s | %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %9.2f | %8.2f\n", name.c_str(),
+                variants[v].team, variants[v].precision, factor[v], evaluate[v], forward_ms, backward_ms,
+                evaluate[v] - forward_ms - backward_ms, second_order[v], evaluate[v] + second_order[v], blend[v]);
   }
   std::fflush(stdout);
 }
@@ -129,10 +157,10 @@ int main(int argc, char** argv) {
   }
   const std::vector<int> teams = {1, meshik::thread_count(0)};
   std::printf("One Gauss-Newton iteration by phase (median of %d runs, ms), nonlinear space, 16 handles,\n"
-              "on 1 thread and on all %d cores, alternately:\n\n",
+              "on 1 thread and on all %d cores, features stored in single and in double precision, alternately:\n\n",
               repeats, teams[1]);
-  std::printf("%-9s %5s | %8s | %8s %8s %8s %8s | %8s | %9s\n", "Mesh", "Team", "factor", "evaluate", "forward",
-              "backward", "rest", "second", "iteration");
+  std::printf("%-9s %5s %9s | %8s | %8s %8s %8s %8s | %8s | %9s | %8s\n", "Mesh", "Team", "features", "factor", "evaluate",
+              "forward", "backward", "rest", "second", "iteration", "blend");
   for (const auto& [name, folder] : {std::pair<const char*, const char*>{"Horse", "horse-poses"},
                                      std::pair<const char*, const char*>{"Elephant", "elephant-poses"}}) {
     const fs::path dir = fs::path(data) / folder;

@@ -12,6 +12,7 @@
 // The in-run comparison: the factorization (with its own ordering) of G'^T G' with the fourth
 // vertices kept (not eliminated).
 // Handles: 16 vertices by farthest-point sampling; targets: a held-out pose (not an example).
+// --precision single|double: how the ExampleSet stores the features (default single, the library's).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -135,14 +136,15 @@ double kept_factor_ms(const meshik_bench::TriangleMesh& mesh, const std::vector<
   });
 }
 
-Timing time_case(const Case& c, int repeats) {
+Timing time_case(const Case& c, int repeats, meshik::FeaturePrecision precision) {
   Timing t;
   std::vector<const double*> pointers;
   for (const auto& e : c.examples) pointers.push_back(e.data());
   const meshik::MeshView view{c.rest.vertices.data(), c.rest.num_vertices(), c.rest.triangles.data(),
                               c.rest.num_triangles()};
   std::shared_ptr<meshik::ExampleSet> set;
-  t.precompute_ms = milliseconds_of([&] { set = std::make_shared<meshik::ExampleSet>(view, pointers); });
+  t.precompute_ms = milliseconds_of(
+      [&] { set = std::make_shared<meshik::ExampleSet>(view, pointers, meshik::ProgressCallback{}, 0, precision); });
   const std::vector<int> handles = meshik_bench::farthest_point_handles(c.rest.vertices, 16);
   const std::vector<double> targets = meshik_bench::gather_rows(c.held_out, handles);
   meshik::SolverOptions serial, threaded;
@@ -255,12 +257,15 @@ std::string speedup(double paper_s, double ours_ms) {
 int main(int argc, char** argv) {
   std::string samples = "sample_meshes", data = "../shared/data", only;
   int repeats = 5;
+  meshik::FeaturePrecision precision = meshik::FeaturePrecision::kSingle;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     if (key == "--samples") samples = argv[i + 1];
     else if (key == "--data") data = argv[i + 1];
     else if (key == "--repeats") repeats = std::max(1, std::atoi(argv[i + 1]));
     else if (key == "--only") only = argv[i + 1];
+    else if (key == "--precision" && std::string(argv[i + 1]) == "double") precision = meshik::FeaturePrecision::kDouble;
+    else if (key == "--precision" && std::string(argv[i + 1]) == "single") precision = meshik::FeaturePrecision::kSingle;
     else std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
   }
   std::vector<Case> cases;
@@ -293,9 +298,9 @@ int main(int argc, char** argv) {
 
   const unsigned cores = std::thread::hardware_concurrency();
   std::printf("\nMeshIK vs the paper (Sumner et al. 2005, 3.4 GHz Pentium 4), nonlinear feature space,\n"
-              "16 handles; ours: median of %d runs, on 1 thread and (nT columns) on all %u cores, alternately.\n"
-              "Paper figures in seconds, ours in ms.\n\n",
-              repeats, cores);
+              "16 handles; ours: median of %d runs, on 1 thread and (nT columns) on all %u cores, alternately;\n"
+              "features stored in %s precision. Paper figures in seconds, ours in ms.\n\n",
+              repeats, cores, precision == meshik::FeaturePrecision::kSingle ? "single" : "double");
   std::printf("%-16s %7s %7s %3s | %8s %8s %8s | %9s %9s %9s %5s | %7s %7s %7s | %9s %9s %9s %6s | %9s %9s %8s\n",
               "Mesh", "Verts", "Tris", "Ex", "Factor s", "Solve s", "Total s", "Factor ms", "Solve ms", "Total ms",
               "Iter", "xFactor", "xSolve", "xTotal", "Factor nT", "Solve nT", "Total nT", "1T/nT", "Precomp",
@@ -303,7 +308,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> floors;
   for (const Case& c : cases) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
-    const Timing t = time_case(c, repeats);
+    const Timing t = time_case(c, repeats, precision);
     auto floor_line = [&](const char* what, double ms, double limit) {
       char line[160];
       std::snprintf(line, sizeof line, "%s %s %.2f ms (floor %.0f ms): %s", c.name.c_str(), what, ms, limit,

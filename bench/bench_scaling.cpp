@@ -12,11 +12,13 @@
 //               resident memory before it: the program and its input meshes), and the
 //               ExampleSet's own arrays per triangle (the system's pattern counted, the rest of
 //               its symbolic analysis not) and the features' per triangle and example.
+// The features are stored in single precision (the library's default) or, with --precision double,
+// in double (the comparison for the memory and times).
 // In the same run, the same-sized normal matrix G'^T G' (4th vertices eliminated, handles
 // removed) is factored by MeshIK's sparse Cholesky and by CHOLMOD and Eigen (library_cholesky.h):
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
 //
-// Usage: bench_scaling [--data DIR] [--levels N] [--first-level N] [--reps N]
+// Usage: bench_scaling [--data DIR] [--levels N] [--first-level N] [--reps N] [--precision single|double]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -92,7 +94,8 @@ size_t bytes_of(const std::vector<T>& v) {
 void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& per_example) {
   const meshik::ExampleFeatures& f = s.features;
   const meshik::CscMatrix& pattern = s.system_analysis.analyzed_pattern();
-  per_example = static_cast<double>(bytes_of(f.nonlinear) + bytes_of(f.linear));
+  per_example = static_cast<double>(bytes_of(f.single.nonlinear) + bytes_of(f.single.linear) +
+                                    bytes_of(f.full.nonlinear) + bytes_of(f.full.linear));
   all = per_example + static_cast<double>(
       bytes_of(f.plane_basis) + bytes_of(s.vertex_of_internal) + bytes_of(s.internal_of_vertex) +
       bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
@@ -110,7 +113,7 @@ struct Measurement {
   char phases[512] = {};
 };
 
-Measurement measure(const PoseSet& base, int levels, int threads, int reps) {
+Measurement measure(const PoseSet& base, int levels, int threads, int reps, meshik::FeaturePrecision precision) {
   Measurement out;
   const PoseSet set = subdivided(base, levels);
   std::vector<const double*> pointers;
@@ -120,7 +123,8 @@ Measurement measure(const PoseSet& base, int levels, int threads, int reps) {
   out.triangles = set.rest.num_triangles();
   out.input_mb = current_rss_mb();
   auto start = std::chrono::steady_clock::now();
-  const auto examples = std::make_shared<meshik::ExampleSet>(view, pointers, meshik::ProgressCallback{}, threads);
+  const auto examples =
+      std::make_shared<meshik::ExampleSet>(view, pointers, meshik::ProgressCallback{}, threads, precision);
   out.example_set_ms = ms_since(start);
   out.set_peak_mb = peak_rss_mb();
   int written = 0;
@@ -210,12 +214,15 @@ bool in_child(const Work& work, T& result) {
 int main(int argc, char** argv) {
   std::string data = "../shared/data";
   int levels = 3, first_level = 1, reps = 3;
+  meshik::FeaturePrecision precision = meshik::FeaturePrecision::kSingle;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     if (key == "--data") data = argv[i + 1];
     else if (key == "--levels") levels = std::max(1, std::atoi(argv[i + 1]));
     else if (key == "--first-level") first_level = std::max(1, std::atoi(argv[i + 1]));
     else if (key == "--reps") reps = std::max(1, std::atoi(argv[i + 1]));
+    else if (key == "--precision" && std::string(argv[i + 1]) == "double") precision = meshik::FeaturePrecision::kDouble;
+    else if (key == "--precision" && std::string(argv[i + 1]) == "single") precision = meshik::FeaturePrecision::kSingle;
     else if (key != "--samples") std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
   }
   const fs::path folder = fs::path(data) / "horse-poses";
@@ -232,7 +239,8 @@ int main(int argc, char** argv) {
   std::printf("Horse midpoint-subdivided, 4 examples, %d handles, targets from pose 5; %ld cores; times in ms,\n"
               "pose: median of %d solves; Lib factor: fastest of CHOLMOD simplicial/supernodal and Eigen\n"
               "SimplicialLDLT on the same-sized normal matrix (analysis + numeric, 1 thread), Ours: MeshIK's\n"
-              "sparse Cholesky on it (analysis + numeric).\n\n", kHandles, cores, reps);
+              "sparse Cholesky on it (analysis + numeric). Features stored in %s precision.\n\n", kHandles, cores, reps,
+              precision == meshik::FeaturePrecision::kSingle ? "single" : "double");
   std::printf("%10s %7s | %10s %8s %9s %8s %9s | %9s %9s | %8s %8s %8s | %s\n", "triangles", "threads", "ExampleSet",
               "Solver", "iteration", "pose", "first", "peak MB", "set B/tri", "Ours", "Lib", "Ours/Lib", "library");
   std::vector<std::string> floors;
@@ -242,7 +250,7 @@ int main(int argc, char** argv) {
     std::vector<Measurement> rows;
     for (int threads : {1, 0}) {
       Measurement m;
-      if (!in_child([&] { return measure(base, level, threads, reps); }, m)) {
+      if (!in_child([&] { return measure(base, level, threads, reps, precision); }, m)) {
         std::printf("(level %d, threads %d: the child failed)\n", level, threads);
         continue;
       }

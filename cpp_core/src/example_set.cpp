@@ -75,7 +75,7 @@ std::vector<int> component_anchors(const VertexComponents& components) {
 }  // namespace
 
 ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& examples,
-                       const ProgressCallback& progress, int threads)
+                       const ProgressCallback& progress, int threads, FeaturePrecision precision)
     : impl_(std::make_unique<Impl>()) {
   Impl& impl = *impl_;
   PhaseClock clock(impl.phase_times);
@@ -125,7 +125,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap("topology and frames");
   compute_centroids(impl, example_pointers);
   clock.lap("centroids");
-  impl.features = compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads);
+  impl.features =
+      compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
   // Only the in-plane gradients are read after this: the plane bases live on in the features,
   // the inverse frames nowhere (120 bytes per triangle).
   impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
@@ -152,6 +153,7 @@ ExampleSet& ExampleSet::operator=(ExampleSet&&) noexcept = default;
 int ExampleSet::num_vertices() const { return impl_->num_vertices; }
 int ExampleSet::num_triangles() const { return impl_->num_triangles; }
 int ExampleSet::num_examples() const { return impl_->num_examples; }
+FeaturePrecision ExampleSet::feature_precision() const { return impl_->features.precision; }
 
 std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space) const {
   const Impl& impl = *impl_;

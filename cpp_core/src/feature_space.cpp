@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include <string>
+#include <type_traits>
 
 #include "huge_pages.h"
 #include "lane_math.h"
@@ -27,37 +28,43 @@ void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_r
 }
 
 // (M - I) U for a batch: m, 9 rows of kLanes (M row-major), basis U, 6 rows of kLanes (3 by 2
-// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes).
-MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, double* out) {
+// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes),
+// rounded to Stored.
+template <typename Stored>
+MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, Stored* out) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 2; ++c)
       for (int l = 0; l < kLanes; ++l) {
         double sum = 0.0;
         for (int q = 0; q < 3; ++q) sum += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
-        out[(2 * r + c) * kLanes + l] = sum;
+        out[(2 * r + c) * kLanes + l] = static_cast<Stored>(sum);
       }
 }
 
-// Copies `rows` rows of kLanes doubles from each of two batches (second may be null: zeros) into
-// rows of 2 kLanes floats, the first batch's lanes first: one pair of kCurvatureBatches.
-MESHIK_LANE_INLINE void narrow_pair(const double* first, const double* second, int rows, float* out) {
+// Copies `rows` rows of kLanes values (double: rounded, or float) from each of two batches (second
+// may be null: zeros) into rows of 2 kLanes floats, the first batch's lanes first: one pair of
+// kCurvatureBatches.
+template <typename Value>
+MESHIK_LANE_INLINE void float_pair(const Value* first, const Value* second, int rows, float* out) {
   for (int row = 0; row < rows; ++row) {
     for (int l = 0; l < kLanes; ++l) out[row * 2 * kLanes + l] = static_cast<float>(first[row * kLanes + l]);
     for (int l = 0; l < kLanes; ++l)
       out[row * 2 * kLanes + kLanes + l] = second != nullptr ? static_cast<float>(second[row * kLanes + l]) : 0.0f;
   }
 }
-static_assert(kCurvatureBatches == 2, "narrow_pair packs two batches");
+static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
-// gradients, for every example, on `team` threads. Its working arrays (rotations, logs and edge
-// distances of a group of examples) are freed on return.
+// gradients, for every example, on `team` threads, as Stored values (features' precision). Its
+// working arrays (rotations, logs and edge distances of a group of examples) are freed on return.
+template <typename Stored>
 void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& adjacency, const int* triangles,
                          const std::vector<const double*>& examples, const ProgressCallback& progress,
                          bool consistent_branches, int team, ExampleFeatures& features) {
   const int m = features.num_triangles;
   const int k = features.num_examples;
+  FeatureValues<Stored>& values = values_of<Stored>(features);
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
   // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
   const int group_size = std::max(1, std::min(team, k));
@@ -82,10 +89,11 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           polar_and_log_batch(t, count, rotation, stretch, log);
           const size_t block = static_cast<size_t>(batch) * k + i;
           const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
-          minus_identity_on_plane(stretch, basis, features.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
-          minus_identity_on_plane(t, basis, features.linear.data() + 6 * kLanes * block);
+          minus_identity_on_plane(stretch, basis, values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
+          minus_identity_on_plane(t, basis, values.linear.data() + 6 * kLanes * block);
           for (int r = 0; r < 3; ++r)
-            for (int l = 0; l < count; ++l) features.nonlinear[9 * kLanes * block + r * kLanes + l] = log[r][l];
+            for (int l = 0; l < count; ++l)
+              values.nonlinear[9 * kLanes * block + r * kLanes + l] = static_cast<Stored>(log[r][l]);
           for (int l = 0; l < count; ++l) {
             for (int e = 0; e < 9; ++e) rotations[first + l](e / 3, e % 3) = rotation[e][l];
             logs[g][first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
@@ -105,8 +113,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       // The principal logs are in place: write those given another branch.
       const int i = group + g;
       for (int j : choose_consistent_log_branches(adjacency, components, distances[g].data(), logs[g])) {
-        double* block = features.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
-        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = logs[g][j](r);
+        Stored* block = values.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
+        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = static_cast<Stored>(logs[g][j](r));
       }
     }
     for (int i = group; i < group + members; ++i)
@@ -121,23 +129,30 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress,
-                                         bool consistent_branches, int threads) {
+                                         bool consistent_branches, int threads, FeaturePrecision precision) {
   const int m = frames.num_triangles;
   const int k = static_cast<int>(examples.size());
   ExampleFeatures features;
   features.num_examples = k;
   features.num_triangles = m;
   features.num_batches = (m + kLanes - 1) / kLanes;
+  features.precision = precision;
   const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
-  assign_on_huge_pages(features.nonlinear, 9 * slots * k, 0.0);
-  assign_on_huge_pages(features.linear, 6 * slots * k, 0.0);
+  visit_feature_values(features, [&](auto& values) {
+    using Stored = typename std::decay_t<decltype(values)>::Value;
+    assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0));
+    assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0));
+  });
   assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0);
   for (int j = 0; j < m; ++j)
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);
 
-  fill_example_blocks(frames, adjacency, triangles, examples, progress, consistent_branches, thread_count(threads),
-                      features);
+  const int team = thread_count(threads);
+  if (precision == FeaturePrecision::kSingle)
+    fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
+  else
+    fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
   return features;
 }
 
@@ -350,30 +365,67 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
+// blend_batch on the features' values stored as Stored (values: those of features).
+template <typename Stored>
+MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const FeatureValues<Stored>& values,
+                                     FeatureSpace space, const double* w, int batch, double* out) {
+  const int k = features.num_examples;
+  const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
+  if (space == FeatureSpace::kLinear) {
+    const Stored* lin = values.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
+    for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
+    for (int i = 0; i < k; ++i)
+      for (int e = 0; e < 6 * L; ++e) {
+        const double value = static_cast<double>(lin[i * 6 * L + e]);
+        out[e] += w[i] * value;
+        out[(i + 1) * 6 * L + e] = value;
+      }
+    return;
+  }
+  const Stored* feature = values.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  if (batch + kPrefetchDistance < features.num_batches) {
+    prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
+    prefetch_values(basis + kPrefetchDistance * 6 * L, 6 * L);
+  }
+  // Floats are widened into out's room after the blend first, in one pass: the blend's loops
+  // then read doubles only (reading the floats inside them made the elephant's blend 45 % slower).
+  const double* wide = nullptr;
+  if constexpr (std::is_same_v<Stored, double>) {
+    wide = feature;
+  } else {
+    double* room = out + 6 * (k + 1) * L;
+    for (int e = 0; e < k * 9 * L; ++e) room[e] = static_cast<double>(feature[e]);
+    wide = room;
+  }
+  BatchRotation<double, L> r;
+  blend_nonlinear(wide, basis, w, k, out, r);
+}
+
+// Asks for the nonlinear features (values of `features`, as Stored) kCurvatureBatches
+// kPrefetchDistance batches ahead of `batch`, and copies those of batch and batch + 1 (zeros if
+// it does not exist) into feature: 9 #E rows of 2 kLanes floats (float_pair).
+template <typename Stored>
+MESHIK_LANE_INLINE void float_feature_pair(const ExampleFeatures& features, const FeatureValues<Stored>& values,
+                                           int batch, float* feature) {
+  const int k = features.num_examples;
+  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
+  const Stored* batch_feature = values.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
+  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches)
+    prefetch_values(batch_feature + kCurvatureBatches * kPrefetchDistance * k * 9 * L,
+                    static_cast<size_t>(kCurvatureBatches) * k * 9 * L);
+  float_pair(batch_feature, batch + 1 < features.num_batches ? batch_feature + k * 9 * L : nullptr, 9 * k, feature);
+}
+
 }  // namespace
 
 MESHIK_SIMD_CLONES
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out) {
-  const int k = features.num_examples;
-  const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  if (space == FeatureSpace::kLinear) {
-    const double* lin = features.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
-    for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
-    for (int i = 0; i < k; ++i)
-      for (int e = 0; e < 6 * L; ++e) {
-        out[e] += w[i] * lin[i * 6 * L + e];
-        out[(i + 1) * 6 * L + e] = lin[i * 6 * L + e];
-      }
-    return;
-  }
-  const double* feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
-  if (batch + kPrefetchDistance < features.num_batches) {
-    prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
-    prefetch_values(basis + kPrefetchDistance * 6 * L, 6 * L);
-  }
-  BatchRotation<double, L> r;
-  blend_nonlinear(feature, basis, w, k, out, r);
+  // An explicit branch, not visit_feature_values: a lambda would not share this function's clones.
+  if (features.precision == FeaturePrecision::kSingle)
+    blend_stored(features, features.single, space, w, batch, out);
+  else
+    blend_stored(features, features.full, space, w, batch, out);
 }
 
 MESHIK_SIMD_CLONES
@@ -382,14 +434,9 @@ void add_residual_curvature(const ExampleFeatures& features, const double* w, in
   constexpr int N = kCurvatureBatches * L;
   const int k = features.num_examples;
   const bool has_second = batch + 1 < features.num_batches;
-  // A batch's #E blocks of 9 rows are one block of 9 #E rows.
-  const double* batch_feature = features.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   const double* batch_basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches) {
-    prefetch_values(batch_feature + kCurvatureBatches * kPrefetchDistance * k * 9 * L,
-                    static_cast<size_t>(kCurvatureBatches) * k * 9 * L);
+  if (batch + kCurvatureBatches * kPrefetchDistance < features.num_batches)
     prefetch_values(batch_basis + kCurvatureBatches * kPrefetchDistance * 6 * L, kCurvatureBatches * 6 * L);
-  }
   // scratch: residual (6 rows), features (9 #E rows), plane basis (6 rows), blend output
   // ((#E + 1) 6 rows), curvature (#E #E rows).
   float* narrow_residual = scratch;
@@ -397,9 +444,12 @@ void add_residual_curvature(const ExampleFeatures& features, const double* w, in
   float* basis = feature + k * 9 * N;
   float* out = basis + 6 * N;
   float* curvature = out + (k + 1) * 6 * N;
-  narrow_pair(residual, has_second ? residual + 6 * L : nullptr, 6, narrow_residual);
-  narrow_pair(batch_feature, has_second ? batch_feature + k * 9 * L : nullptr, 9 * k, feature);
-  narrow_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
+  float_pair(residual, has_second ? residual + 6 * L : nullptr, 6, narrow_residual);
+  if (features.precision == FeaturePrecision::kSingle)
+    float_feature_pair(features, features.single, batch, feature);
+  else
+    float_feature_pair(features, features.full, batch, feature);
+  float_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
   for (int e = 0; e < k * k * N; ++e) curvature[e] = 0.0f;
   BatchRotation<float, N> r;
   blend_nonlinear(feature, basis, w, k, out, r);

@@ -12,6 +12,7 @@
 // so that one batch's arithmetic is SIMD; the last batch is padded with zero features.
 #pragma once
 
+#include <type_traits>
 #include <vector>
 
 #include "meshik/meshik.h"
@@ -27,35 +28,71 @@ constexpr int kLanes = 8;
 // per quantity).
 constexpr int kCurvatureBatches = 2;
 
+// The per-example feature values, stored as Stored (float or double; FeaturePrecision).
+template <typename Stored>
+struct FeatureValues {
+  using Value = Stored;
+  // Batch b, example i: 9 rows of kLanes values, phi_ij (3) then D_ij (3 by 2 row-major):
+  // entry ((b #E + i) 9 + row) kLanes + lane for triangle j = b kLanes + lane.
+  std::vector<Stored> nonlinear;
+  // Batch b, example i: 6 rows of kLanes, L_ij (3 by 2 row-major): ((b #E + i) 6 + row) kLanes + lane.
+  std::vector<Stored> linear;
+};
+
+// Mixed precision, by the rule of issue 13: "Mixed precision is allowed wherever the pose, energy
+// and gradient stay double, the examples still reproduce to < 1e-6 of the bounding-box diagonal,
+// and hold-out errors stay within 1e-4 relative of the double-precision result (show it in a
+// test)." With FeaturePrecision::kSingle the values are rounded to floats once, when written, and
+// every reader widens them to double before any arithmetic (blend_batch, the linear start);
+// only add_residual_curvature, which shapes the step and never the energy, computes in float.
+// tests/cpp/test_meshik_feature_precision.cpp shows the rule on the horse.
 struct ExampleFeatures {
   int num_examples = 0;
   int num_triangles = 0;
   int num_batches = 0;  // ceil(#F / kLanes)
-  // Batch b, example i: 9 rows of kLanes values, phi_ij (3) then D_ij (3 by 2 row-major):
-  // entry ((b #E + i) 9 + row) kLanes + lane for triangle j = b kLanes + lane.
-  std::vector<double> nonlinear;
-  // Batch b, example i: 6 rows of kLanes, L_ij (3 by 2 row-major): ((b #E + i) 6 + row) kLanes + lane.
-  std::vector<double> linear;
+  FeaturePrecision precision = FeaturePrecision::kSingle;
+  FeatureValues<float> single;  // the values when precision is kSingle (empty otherwise)
+  FeatureValues<double> full;   // the values when precision is kDouble (empty otherwise)
   // Batch b: 6 rows of kLanes, U_j (3 by 2 row-major): (b 6 + row) kLanes + lane.
   std::vector<double> plane_basis;
 };
 
+// features.single or features.full (Stored float or double), as the Features' constness.
+template <typename Stored, typename Features>
+auto& values_of(Features& features) {
+  if constexpr (std::is_same_v<Stored, float>)
+    return features.single;
+  else
+    return features.full;
+}
+
+// Calls visit(values) with the FeatureValues that `features` holds (its precision's); returns
+// what visit returns.
+template <typename Features, typename Visit>
+decltype(auto) visit_feature_values(Features& features, Visit&& visit) {
+  if (features.precision == FeaturePrecision::kSingle) return visit(values_of<float>(features));
+  return visit(values_of<double>(features));
+}
+
 // frames / adjacency / triangles (#F by 3): the rest mesh's; examples: #E pointers to #V by 3
 // positions. consistent_branches = false keeps the principal rotation logs (for comparison only).
+// precision: how the values are stored (FeaturePrecision).
 // progress(fraction) is called once per example, on the calling thread. threads: 0 = all cores,
 // n = n threads over blocks of triangles (see thread_count); the result is identical for any count.
 ExampleFeatures compute_example_features(const TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress = {},
-                                         bool consistent_branches = true, int threads = 0);
+                                         bool consistent_branches = true, int threads = 0,
+                                         FeaturePrecision precision = FeaturePrecision::kSingle);
 
-// Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each.
-inline int blend_batch_size(int num_examples) { return 6 * (num_examples + 1) * kLanes; }
+// Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each,
+// then room for the batch's features widened to double (9 rows per example).
+inline int blend_batch_size(int num_examples) { return (6 * (num_examples + 1) + 9 * num_examples) * kLanes; }
 
 // Blends the triangles of `batch` with weights w (#E). Writes to out (blend_batch_size doubles),
 // for q = 0 the targets F_j(w) and for q = 1 .. #E the derivatives dF_j/dw_{q-1}, each 3 by 2
-// row-major: out[((q 6) + row) kLanes + lane].
+// row-major: out[((q 6) + row) kLanes + lane]; the rest of out is scratch.
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
                  double* out);
 
@@ -71,12 +108,10 @@ inline int curvature_scratch_size(int num_examples) {
 // batch: the second-order term of the energy's Hessian that Gauss-Newton leaves out.
 // residual: R_j = Q_j(x) - F_j(w) of the two batches, 6 rows of kLanes each, the second batch's
 // after the first's (zero in padding lanes). scratch: curvature_scratch_size floats.
-// Computed in single precision: the two batches' features and plane bases are rounded to floats
-// in scratch first. The term only shapes the step (the trust-region model), never the energy, its
-// gradient or the pose, so rounding at 1e-7 of its size changes no result, while single precision
-// doubles the lanes per instruction. (A stored single-precision copy of the features would halve
-// the read too, but costs 36 bytes per triangle and example: 182 MB at 1.08M triangles and 4
-// examples, the largest duplicate of the ExampleSet.)
+// Computed in single precision: the two batches' features (unless stored as floats already) and
+// plane bases are rounded to floats in scratch first. The term only shapes the step (the
+// trust-region model), never the energy, its gradient or the pose, so rounding at 1e-7 of its
+// size changes no result, while single precision doubles the lanes per instruction.
 void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
                             const double* residual, float* scratch, double* curvature_lanes);
 

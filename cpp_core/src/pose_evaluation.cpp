@@ -233,7 +233,6 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       regularization_(regularization),
       targets_(targets),
       team_(team),
-      coupling_(buffers.coupling),
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(static_cast<size_t>(partition_.num_chunks()) * blend_batch_size(set.num_examples)),
@@ -250,9 +249,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   const int k = set.num_examples;
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
-  coupling_.resize(3 * static_cast<size_t>(system.num_rows()));
   residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
-  system.handle_coupling(targets, coupling_.data());
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
   for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {
@@ -315,14 +312,16 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const std::vector<int> source = column_sources(k, with_jacobian, stride_);
 #pragma omp parallel num_threads(team_)
   {
-    // Every system row starts as -K_fh x_h in its first 3 columns and zero in the others; the
-    // extra rows start at zero.
+    // Every system row starts as -K_fh x_h in its first 3 columns (nonzero only in the rows
+    // coupled to a handle: the sparse K_fh is applied, no dense copy of its product is kept) and
+    // zero in the others; the extra rows start at zero.
 #pragma omp for schedule(dynamic, kRowsPerTask)
     for (int u = 0; u < all_rows; ++u) {
       double* row = rhs_ + static_cast<size_t>(u) * stride_;
-      for (int c = 0; c < 3; ++c) row[c] = u < rows ? -coupling_[3 * u + c] : 0.0;
-      std::fill(row + 3, row + stride_, 0.0);
+      std::fill(row, row + stride_, 0.0);
     }
+#pragma omp single
+    system_.subtract_handle_coupling(targets_, rhs_, stride_);
 #pragma omp for schedule(dynamic, 1)
     for (int chunk = 0; chunk < chunks; ++chunk) assemble_chunk(weights, with_jacobian, source.data(), chunk);
   }

@@ -36,7 +36,6 @@ struct PoseEvaluation {
 // The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
-  std::vector<double> coupling;  // PoseSystem::num_rows() by 3: K_fh x_h
   std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
   // PoseSystem::num_rows() + AssemblyPartition::num_extra_rows() rows of 3 (#E + 1) doubles
   // rounded up to whole blocks of kLanes, from the first 64-byte boundary: the right-hand sides,
@@ -106,7 +105,6 @@ class PoseEvaluator {
   double regularization_;
   const double* targets_;
   int team_;
-  std::vector<double>& coupling_;        // buffers' coupling
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // #chunks by blend_batch_size(#E): a batch's F and dF/dw

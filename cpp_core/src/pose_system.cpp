@@ -96,16 +96,15 @@ void PoseSystem::number_rows_in_factor_order() {
   for (int& u : coupling_row_) u = row_of_unknown[u];
 }
 
-void PoseSystem::handle_coupling(const double* targets, double* out) const {
-  std::fill(out, out + 3 * static_cast<size_t>(num_rows_), 0.0);
+void PoseSystem::subtract_handle_coupling(const double* targets, double* rows, int stride) const {
   for (size_t h = 0; h < handles_.size(); ++h) {
     const double* x = targets + 3 * h;
     for (int s = coupling_start_[h]; s < coupling_start_[h + 1]; ++s) {
-      double* row = out + 3 * static_cast<size_t>(coupling_row_[s]);
+      double* row = rows + static_cast<size_t>(coupling_row_[s]) * stride;
       const double value = coupling_value_[s];
-      row[0] += value * x[0];
-      row[1] += value * x[1];
-      row[2] += value * x[2];
+      row[0] -= value * x[0];
+      row[1] -= value * x[1];
+      row[2] -= value * x[2];
     }
   }
 }

@@ -40,9 +40,10 @@ class PoseSystem {
   const std::vector<int>& handle_triangles() const { return handle_triangles_; }
   const std::vector<int>& handle_triangle_slot() const { return handle_triangle_slot_; }
 
-  // out (num_rows() by 3, row-major) = K_fh x_h: the handles' coupling to the free vertices for
-  // handle positions targets (#H by 3, row-major).
-  void handle_coupling(const double* targets, double* out) const;
+  // Subtracts K_fh x_h, the handles' coupling to the free vertices for handle positions targets
+  // (#H by 3, row-major), from the first 3 columns of rows (num_rows() rows of `stride` doubles):
+  // only the rows coupled to a handle change, by handle and entry in order.
+  void subtract_handle_coupling(const double* targets, double* rows, int stride) const;
 
   // K_fh by handle h: rows coupling_row()[s] and values coupling_value()[s] of the unknowns
   // coupled to handle h, for s in [coupling_start()[h], coupling_start()[h + 1]).

@@ -110,6 +110,13 @@ meshik::FeatureSpace parse_feature_space(const std::string& name) {
   throw meshik::InputError("feature_space must be 'nonlinear' or 'linear', got '" + name + "'");
 }
 
+// "single" or "double" as a FeaturePrecision; InputError otherwise.
+meshik::FeaturePrecision parse_feature_precision(const std::string& name) {
+  if (name == "single") return meshik::FeaturePrecision::kSingle;
+  if (name == "double") return meshik::FeaturePrecision::kDouble;
+  throw meshik::InputError("feature_precision must be 'single' or 'double', got '" + name + "'");
+}
+
 // Adapts an optional Python callable progress(fraction, stage) -> bool | None to the core's
 // callback, and lets Ctrl+C stop a core call: at every progress point the callback also runs
 // Python's pending signal handlers, so SIGINT raises KeyboardInterrupt within one iteration.
@@ -173,7 +180,7 @@ struct PySolver {
 // ExampleSet from rest_vertices (n, 3), faces (m, 3) and examples ((k, n, 3) or k arrays (n, 3)),
 // with the GIL released while the core validates and precomputes.
 // threads: None (all cores) or a count from 1 to kMaxThreads, as the core's ExampleSet takes it
-// (0 = all cores).
+// (0 = all cores). feature_precision: "single" or "double" (parse_feature_precision).
 constexpr long kMaxThreads = 4096;
 int thread_option(const nb::object& threads) {
   if (threads.is_none()) return 0;
@@ -185,8 +192,10 @@ int thread_option(const nb::object& threads) {
 }
 
 PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object& faces,
-                              const nb::object& examples, const nb::object& progress, const nb::object& threads) {
+                              const nb::object& examples, const nb::object& progress, const nb::object& threads,
+                              const std::string& feature_precision) {
   const int thread_count = thread_option(threads);
+  const meshik::FeaturePrecision precision = parse_feature_precision(feature_precision);
   std::vector<double> rest = point_rows(rest_vertices, "rest_vertices", -1, "(n, 3)");
   const long n = static_cast<long>(rest.size() / 3);
   const nb::object face_array = as_numpy(faces);
@@ -215,7 +224,7 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
   for (const auto& pose : poses) pointers.push_back(pose.data());
   PythonProgress python_progress(progress);
   return PyExampleSet{python_progress.run([&](const meshik::ProgressCallback& callback) {
-    return std::make_shared<const meshik::ExampleSet>(view, pointers, callback, thread_count);
+    return std::make_shared<const meshik::ExampleSet>(view, pointers, callback, thread_count, precision);
   })};
 }
 
@@ -301,13 +310,18 @@ NB_MODULE(_core, m) {
                            "with their per-triangle features precomputed.")
       .def("__init__",
            [](PyExampleSet* self, const nb::object& rest_vertices, const nb::object& faces,
-              const nb::object& examples, const nb::object& progress, const nb::object& threads) {
-             new (self) PyExampleSet(make_example_set(rest_vertices, faces, examples, progress, threads));
+              const nb::object& examples, const nb::object& progress, const nb::object& threads,
+              const std::string& feature_precision) {
+             new (self) PyExampleSet(
+                 make_example_set(rest_vertices, faces, examples, progress, threads, feature_precision));
            },
            "rest_vertices"_a, "faces"_a, "examples"_a, "progress"_a = nb::none(), "threads"_a = nb::none(),
+           "feature_precision"_a = "single",
            "rest_vertices: (n, 3); faces: (m, 3) integer; examples: (k, n, 3) or a sequence of "
            "(n, 3) arrays; progress: optional callable(fraction, stage) returning False to cancel; "
-           "threads: None for all cores or a count (the features are the same bits for any count).")
+           "threads: None for all cores or a count (the features are the same bits for any count); "
+           "feature_precision: 'single' (60 bytes per triangle and example; every blend, energy and "
+           "pose still computed in double) or 'double' (120 bytes).")
       .def("blend",
            [](const PyExampleSet& self, const nb::object& weights, const std::string& space) {
              return blend(*self.core, weights, parse_feature_space(space));
@@ -316,7 +330,10 @@ NB_MODULE(_core, m) {
            "The examples combined with weights (k,), no handles: (n, 3) positions.")
       .def_prop_ro("num_vertices", [](const PyExampleSet& s) { return s.core->num_vertices(); })
       .def_prop_ro("num_triangles", [](const PyExampleSet& s) { return s.core->num_triangles(); })
-      .def_prop_ro("num_examples", [](const PyExampleSet& s) { return s.core->num_examples(); });
+      .def_prop_ro("num_examples", [](const PyExampleSet& s) { return s.core->num_examples(); })
+      .def_prop_ro("feature_precision", [](const PyExampleSet& s) {
+        return s.core->feature_precision() == meshik::FeaturePrecision::kSingle ? "single" : "double";
+      });
 
   nb::class_<PySolveResult>(m, "SolveResult", "The pose found by Solver.solve().")
       .def_ro("vertices", &PySolveResult::vertices, "(n, 3) float64 posed positions")
@@ -343,8 +360,10 @@ NB_MODULE(_core, m) {
            [](PySolver* self, const nb::object& rest_vertices, const nb::object& faces,
               const nb::object& examples, const nb::object& handles,
               const std::string& feature_space, double weight_regularization, int max_iterations,
-              double tolerance, const nb::object& progress, const nb::object& threads) {
-             PyExampleSet set = make_example_set(rest_vertices, faces, examples, progress, threads);
+              double tolerance, const nb::object& progress, const nb::object& threads,
+              const std::string& feature_precision) {
+             PyExampleSet set =
+                 make_example_set(rest_vertices, faces, examples, progress, threads, feature_precision);
              new (self) PySolver(make_solver(std::move(set.core), handles, feature_space,
                                              weight_regularization, max_iterations, tolerance,
                                              progress, threads));
@@ -352,7 +371,7 @@ NB_MODULE(_core, m) {
            "rest_vertices"_a, "faces"_a, "examples"_a, "handles"_a,
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
            "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none(),
-           "threads"_a = nb::none())
+           "threads"_a = nb::none(), "feature_precision"_a = "single")
       .def_static(
           "from_example_set",
           [](const PyExampleSet& set, const nb::object& handles, const std::string& feature_space,

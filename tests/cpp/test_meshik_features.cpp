@@ -50,16 +50,22 @@ class Features : public ::testing::TestWithParam<FeatureSpace> {
 };
 
 TEST_P(Features, ZeroWeightsGiveTheRestAndUnitWeightsGiveTheExample) {
+  // Exactly (to 1e-12) with the features stored in double; with floats, to their rounding.
   const int k = 3;
-  for (int i = -1; i < k; ++i) {
-    std::vector<double> w(k, 0.0);
-    if (i >= 0) w[i] = 1.0;
-    const std::vector<double> pose =
-        impl().to_internal(i < 0 ? meshes_.rest.data() : meshes_.examples[i].data());
-    for (int j = 0; j < meshes_.num_triangles(); ++j) {
-      const std::vector<double> f = blend_of(impl().features, GetParam(), w, j);
-      const std::vector<double> q = in_plane_gradient(impl(), pose.data(), j);
-      for (int e = 0; e < 6; ++e) EXPECT_NEAR(f[e], q[e], 1e-12) << "example " << i << " triangle " << j;
+  for (meshik::FeaturePrecision precision : {meshik::FeaturePrecision::kDouble, meshik::FeaturePrecision::kSingle}) {
+    const meshik::ExampleSet set(meshes_.view(), meshes_.example_pointers(), {}, 0, precision);
+    const double tolerance = precision == meshik::FeaturePrecision::kDouble ? 1e-12 : 1e-6;
+    for (int i = -1; i < k; ++i) {
+      std::vector<double> w(k, 0.0);
+      if (i >= 0) w[i] = 1.0;
+      const std::vector<double> pose =
+          set.impl().to_internal(i < 0 ? meshes_.rest.data() : meshes_.examples[i].data());
+      for (int j = 0; j < meshes_.num_triangles(); ++j) {
+        const std::vector<double> f = blend_of(set.impl().features, GetParam(), w, j);
+        const std::vector<double> q = in_plane_gradient(set.impl(), pose.data(), j);
+        for (int e = 0; e < 6; ++e)
+          EXPECT_NEAR(f[e], q[e], i < 0 ? 1e-12 : tolerance) << "example " << i << " triangle " << j;
+      }
     }
   }
 }

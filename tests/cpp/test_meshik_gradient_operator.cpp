@@ -114,8 +114,10 @@ TEST_F(GradientOperator, KeptAndEliminatedFormsGiveTheSamePoseAndEnergy) {
   std::vector<double> targets = meshik_test::gather_rows(meshes_.examples[0], handles);
   for (double& t : targets) t *= 1.2;
 
-  // Eliminated: the solver at fixed weights (linear space: T_j(w) = I + sum_i w_i (T_ij - I)).
-  const auto set = std::make_shared<meshik::ExampleSet>(meshes_.view(), meshes_.example_pointers());
+  // Eliminated: the solver at fixed weights (linear space: T_j(w) = I + sum_i w_i (T_ij - I)),
+  // features stored in double as the dense comparison computes them.
+  const auto set = std::make_shared<meshik::ExampleSet>(meshes_.view(), meshes_.example_pointers(),
+                                                        meshik::ProgressCallback{}, 0, meshik::FeaturePrecision::kDouble);
   meshik::SolverOptions options;
   options.feature_space = meshik::FeatureSpace::kLinear;
   options.max_iterations = 0;

@@ -18,13 +18,6 @@ namespace {
 using meshik::FeatureSpace;
 using meshik_test::ExampleMeshes;
 
-// Loads shared/data/<folder> or skips the test.
-#define LOAD_OR_SKIP(meshes, folder, rest, ...)                                              \
-  const std::string data_dir = meshik_test::shared_data_dir();                               \
-  if (data_dir.empty())                                                                      \
-    GTEST_SKIP() << "real example sets not found at ../shared/data (set MESHIK_SHARED_DATA)"; \
-  const ExampleMeshes meshes = meshik_test::load_example_folder(data_dir + "/" + folder, rest, __VA_ARGS__)
-
 // Edge-adjacent triangle pairs that are smooth (normals within 60 degrees) in both the rest pose
 // and the example but face apart (negative dot product) in the blend.
 int count_folded_neighbours(const ExampleMeshes& meshes, const std::vector<double>& example,
@@ -118,22 +111,31 @@ TEST(RealData, ExampleHandlesReproduceTheExampleAndItsWeights) {
 
 TEST(RealData, TheHorsesFeaturesAreTheSameBitsForAnyThreadCount) {
   // 4 examples: 1 thread takes them one at a time, 2 and 3 threads in groups (their branch
-  // choices side by side) and split every example's triangles differently.
+  // choices side by side) and split every example's triangles differently; in both precisions.
   LOAD_OR_SKIP(meshes, "horse-poses", "reference.obj", {"1.obj", "2.obj", "3.obj", "4.obj"});
-  const meshik::ExampleSet one(meshes.view(), meshes.example_pointers(), {}, 1);
-  const meshik::ExampleFeatures& expected = one.impl().features;
-  int branched = 0;  // logs off the principal branch (longer than pi): the branch choice is exercised
-  for (size_t e = 0; e < expected.nonlinear.size(); e += 9 * meshik::kLanes)
-    for (int l = 0; l < meshik::kLanes; ++l) {
-      const double* x = expected.nonlinear.data() + e + l;
-      branched += std::hypot(x[0], x[meshik::kLanes], x[2 * meshik::kLanes]) > 3.2;
+  for (meshik::FeaturePrecision precision : {meshik::FeaturePrecision::kSingle, meshik::FeaturePrecision::kDouble}) {
+    const meshik::ExampleSet one(meshes.view(), meshes.example_pointers(), {}, 1, precision);
+    const meshik::ExampleFeatures& expected = one.impl().features;
+    ASSERT_EQ(expected.precision, precision);
+    int branched = 0;  // logs off the principal branch (longer than pi): the branch choice is exercised
+    meshik::visit_feature_values(expected, [&branched](const auto& values) {
+      for (size_t e = 0; e < values.nonlinear.size(); e += 9 * meshik::kLanes)
+        for (int l = 0; l < meshik::kLanes; ++l) {
+          const auto* x = values.nonlinear.data() + e + l;
+          branched += std::hypot(x[0], x[meshik::kLanes], x[2 * meshik::kLanes]) > 3.2;
+        }
+    });
+    std::printf("horse: %d triangle logs off the principal branch\n", branched);
+    EXPECT_GT(branched, 0);
+    for (int threads : {2, 3}) {
+      const meshik::ExampleSet other(meshes.view(), meshes.example_pointers(), {}, threads, precision);
+      const meshik::ExampleFeatures& features = other.impl().features;
+      // The precision not chosen is empty in both.
+      EXPECT_EQ(features.single.nonlinear, expected.single.nonlinear) << threads << " threads";
+      EXPECT_EQ(features.single.linear, expected.single.linear) << threads << " threads";
+      EXPECT_EQ(features.full.nonlinear, expected.full.nonlinear) << threads << " threads";
+      EXPECT_EQ(features.full.linear, expected.full.linear) << threads << " threads";
     }
-  std::printf("horse: %d triangle logs off the principal branch\n", branched);
-  for (int threads : {2, 3}) {
-    const meshik::ExampleSet other(meshes.view(), meshes.example_pointers(), {}, threads);
-    const meshik::ExampleFeatures& features = other.impl().features;
-    EXPECT_EQ(features.nonlinear, expected.nonlinear) << threads << " threads";
-    EXPECT_EQ(features.linear, expected.linear) << threads << " threads";
   }
 }
 

@@ -105,6 +105,15 @@ inline ExampleMeshes load_example_folder(const std::string& folder, const std::s
   return m;
 }
 
+// In a GoogleTest body: loads shared/data/<folder> (rest file `rest`, example files the braced list
+// of names) as `meshes`, with `data_dir` the data folder, or skips the test when the data is absent.
+#define LOAD_OR_SKIP(meshes, folder, rest, ...)                                              \
+  const std::string data_dir = meshik_test::shared_data_dir();                               \
+  if (data_dir.empty())                                                                      \
+    GTEST_SKIP() << "real example sets not found at ../shared/data (set MESHIK_SHARED_DATA)"; \
+  const meshik_test::ExampleMeshes meshes =                                                  \
+      meshik_test::load_example_folder(data_dir + "/" + folder, rest, __VA_ARGS__)
+
 // Length of the diagonal of the axis-aligned bounding box of #V by 3 positions.
 inline double bounding_box_diagonal(const std::vector<double>& vertices) {
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> p(

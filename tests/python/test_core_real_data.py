@@ -61,6 +61,29 @@ def test_lion_example_is_reproduced_from_its_handles(shared_data):
     np.testing.assert_allclose(result.weights, np.eye(5)[3], atol=1e-6)
 
 
+def test_single_precision_features_pose_the_held_out_horse_like_double_ones(shared_data):
+    """Issue 13's rule for features stored in single precision (the default): the examples still
+    reproduce to < 1e-6 of the bounding-box diagonal and the held-out pose's error stays within 1e-4
+    relative of the one with features stored in double."""
+    rest_path, pose_paths = example_set_files(shared_data / "horse-poses")
+    rest, faces = read_obj(rest_path)
+    poses = [read_obj(p)[0] for p in pose_paths]
+    examples, held_out = poses[:4], poses[4]
+    handles = farthest_points(rest, 16)
+    diagonal = np.linalg.norm(np.ptp(rest, axis=0))
+    errors = {}
+    for precision in ("single", "double"):
+        example_set = meshik.ExampleSet(rest, faces, examples, feature_precision=precision)
+        assert example_set.feature_precision == precision
+        solver = meshik.Solver.from_example_set(example_set, handles)
+        for example in examples:
+            assert np.abs(solver.solve(example[handles]).vertices - example).max() < 1e-6 * diagonal
+        result = solver.solve(held_out[handles])
+        errors[precision] = np.sqrt(np.mean(np.sum((result.vertices - held_out) ** 2, axis=1)))
+    assert meshik.ExampleSet(rest, faces, examples).feature_precision == "single"
+    assert abs(errors["single"] - errors["double"]) <= 1e-4 * errors["double"], errors
+
+
 def sample_sets(samples_dir):
     """The generated sample folders (rest.obj and example_*.obj), or a skip."""
     folders = sorted(p for p in samples_dir.glob("*") if (p / "rest.obj").exists()) if samples_dir.is_dir() else []

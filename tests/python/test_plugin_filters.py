@@ -172,7 +172,8 @@ def test_blend_with_a_unit_weight_reproduces_that_example(name):
     for i, example in enumerate(examples):
         weights = ", ".join("1" if k == i else "0" for k in range(len(examples)))
         output = ms.apply_filter(BLEND, weights=weights)
-        assert relative_error(ms.mesh(output["layer_id"]).vertex_matrix(), example) < 1e-9
+        # To the rounding of the features, stored in single precision (measured 2.4e-9 on the bar).
+        assert relative_error(ms.mesh(output["layer_id"]).vertex_matrix(), example) < 1e-7
 
 
 @pytest.mark.parametrize("feature_space", ["Nonlinear", "Linear"])
