@@ -205,7 +205,7 @@ def _run_batch(args) -> int:
 
 def _run_blend(args) -> int:
     """`meshik blend`: write the blended mesh; 0 on success."""
-    from meshik.blending import blend_to_file
+    from meshik.posing.blending import blend_to_file
 
     blend_to_file(args.inputs, args.weights, args.out, feature_space=args.feature_space)
     return 0
@@ -213,7 +213,7 @@ def _run_blend(args) -> int:
 
 def _run_info(args) -> int:
     """`meshik info`: one summary per file (text or JSON); 1 when any file could not be read."""
-    from meshik.file_info import describe_files
+    from meshik.inputs.file_info import describe_files
 
     summaries, errors = describe_files(args.files)
     if args.json:
@@ -231,7 +231,7 @@ def _run_info(args) -> int:
 
 def _run_validate(args) -> int:
     """`meshik validate`: "<file>: OK" or each problem of each file; 1 when any file has a problem."""
-    from meshik.validation import validate_files
+    from meshik.inputs.validation import validate_files
 
     results = validate_files(args.files)
     for path, problems in zip(args.files, results):
@@ -241,7 +241,7 @@ def _run_validate(args) -> int:
 
 def _run_view(args) -> int:
     """`meshik view`: serve the folder's preview until Ctrl+C; 0 when stopped."""
-    from meshik.view_server import preview_server
+    from meshik.preview.server import preview_server
 
     server = preview_server(args.folder, args.port)
     host, port = server.server_address[:2]

@@ -21,17 +21,17 @@ from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
-from meshik import constraints as constraint_files
+from meshik.inputs import constraints as constraint_files
 from meshik.errors import PipelineError
-from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
-from meshik.export_gltf import animation_glb, glb_size_problem
-from meshik.export_gltf_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
-from meshik.output_errors import OutputErrors
-from meshik.meshio import load_example_set, save_mesh, saveable_format
-from meshik.posing import PosedAnimation, pose_animation
+from meshik.export.draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
+from meshik.export.glb_draco import animation_glb, glb_size_problem
+from meshik.export.glb_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.output_errors import OutputErrors
+from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
+from meshik.posing.animation import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
-from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
-from meshik.staging import StagedOutput, check_writable, is_complete, read_report
+from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
+from meshik.outputs.staging import StagedOutput, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")

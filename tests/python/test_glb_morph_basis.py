@@ -4,10 +4,11 @@ every frame decodes (float32, as a viewer mixes the targets) within the grid's r
 import numpy as np
 import pytest
 
-from meshik import export_draco, export_gltf
-from meshik.export_gltf_quantized import BASIS_TOLERANCE, quantized_animation_glb
-from meshik.gltf_container import split_glb
-from meshik.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco as export_gltf
+from meshik.export.glb_quantized import BASIS_TOLERANCE, quantized_animation_glb
+from meshik.export.glb_container import split_glb
+from meshik.export.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
 
 
 def sheet(side: int):

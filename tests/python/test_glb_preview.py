@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from meshik import demo
-from meshik.export_gltf import read_animation_glb
-from meshik.view_server import preview_server, resolve_request
-from meshik.viewer_site import VENDOR_FILES
+from meshik.export.glb_draco import read_animation_glb
+from meshik.preview.server import preview_server, resolve_request
+from meshik.preview.site import VENDOR_FILES
 from pipeline_clients import ROOT
 
 CHECK = ROOT / "tests" / "node" / "preview_check.mjs"

@@ -6,10 +6,12 @@ import json
 import numpy as np
 import pytest
 
-from meshik import _meshopt, export_draco, export_gltf
+from meshik import _meshopt
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco as export_gltf
 from meshik.cli import main
-from meshik.export_gltf_quantized import MAX_POSITION_BITS, quantized_animation_glb
-from meshik.gltf_container import split_glb
+from meshik.export.glb_quantized import MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.glb_container import split_glb
 
 
 def canonical(indices: np.ndarray) -> np.ndarray:

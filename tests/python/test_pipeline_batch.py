@@ -9,12 +9,14 @@ import time
 
 import pytest
 
-from meshik import batch, export_draco, export_gltf
+from meshik import batch
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco as export_gltf
 from meshik.batch import SUMMARY_NAME, job_names
 from meshik.cli import main
 from meshik.errors import PipelineError
-from meshik.meshio import load_mesh
-from meshik.staging import REPORT_NAME
+from meshik.inputs.meshio import load_mesh
+from meshik.outputs.staging import REPORT_NAME
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 
 

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from meshik import export_draco, export_gltf
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco as export_gltf
 from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import bend, tube
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from meshik.errors import MeshFileError, OutputError
-from meshik.meshio import load_example_set, load_mesh, save_mesh, saveable_format
+from meshik.inputs.meshio import load_example_set, load_mesh, save_mesh, saveable_format
 from pipeline_meshes import bend, tube, write_obj, write_tube_set
 
 

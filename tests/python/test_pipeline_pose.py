@@ -7,10 +7,12 @@ import pytest
 import trimesh
 
 import meshik
-from meshik import constraints, export_draco, export_gltf
-from meshik.meshio import load_example_set, load_mesh
+from meshik.inputs import constraints
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco as export_gltf
+from meshik.inputs.meshio import load_example_set, load_mesh
 from meshik.pipeline import pose_job
-from meshik.simplify import simplify
+from meshik.posing.simplify import simplify
 from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 

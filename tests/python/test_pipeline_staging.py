@@ -5,7 +5,7 @@ import os
 import pytest
 
 from meshik.errors import OutputError
-from meshik.staging import REPORT_NAME, StagedOutput, check_writable, is_complete, read_report
+from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_writable, is_complete, read_report
 
 
 def test_commit_moves_files_and_writes_report_last(tmp_path):

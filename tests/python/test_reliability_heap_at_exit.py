@@ -70,7 +70,7 @@ def test_pose_job_on_a_finished_thread_leaves_an_intact_heap(heap_check_library,
 
 
 def test_pymeshlab_is_imported_on_a_thread_that_outlives_the_caller():
-    script = ("import threading\nfrom meshik.meshlab_module import pymeshlab_module\n"
+    script = ("import threading\nfrom meshik.inputs.meshlab_module import pymeshlab_module\n"
               "found = []\nworker = threading.Thread(target=lambda: found.append(pymeshlab_module()))\n"
               "worker.start(); worker.join()\n"
               "owners = [t for t in threading.enumerate() if t.name == 'meshik-pymeshlab-owner']\n"

@@ -17,8 +17,8 @@ from typing import Optional
 import numpy as np
 
 from meshik.errors import PipelineError
-from meshik.meshio import ExampleMeshes
-from meshik.surface_distance import point_triangle_distance
+from meshik.inputs.meshio import ExampleMeshes
+from meshik.posing.surface_distance import point_triangle_distance
 
 SIMPLIFIERS = ("fast", "openmesh")
 # A replayed vertex farther than this fraction of the simplified rest mesh's mean edge length from

@@ -5,8 +5,8 @@ from typing import Any, Dict
 
 import numpy as np
 
-from meshik.export_draco import decode
-from meshik.export_gltf import read_animation_glb, rows_of_ids
+from meshik.export.draco import decode
+from meshik.export.glb_draco import read_animation_glb, rows_of_ids
 
 
 class OutputErrors:

@@ -22,13 +22,13 @@ import numpy as np
 
 from meshik import _constraints
 from meshik.errors import ConstraintError
-from meshik.safe_paths import utf8_name
+from meshik.outputs.safe_paths import utf8_name
 
 FORMAT_NAME = "meshik-constraints"
 FORMAT_VERSION = 1
 FEATURE_SPACES = ("nonlinear", "linear")
 DEFAULT_FPS = 24.0
-SCHEMA_PATH = Path(__file__).resolve().parent / "schema" / "meshik-constraints-1.schema.json"
+SCHEMA_PATH = Path(__file__).resolve().parents[1] / "schema" / "meshik-constraints-1.schema.json"
 
 
 @dataclass(frozen=True)

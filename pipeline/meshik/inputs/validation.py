@@ -6,7 +6,7 @@ out of range, empty regions and groups that overlap.
 """
 from typing import Iterable, List
 
-from meshik import constraints
+from meshik.inputs import constraints
 from meshik.errors import PipelineError
 
 
@@ -20,7 +20,7 @@ def _problems(path) -> List[str]:
     problems = constraints.validate(path)
     if problems:
         return problems
-    from meshik.meshio import load_mesh  # pymeshlab: imported only when a file gets this far
+    from meshik.inputs.meshio import load_mesh  # pymeshlab: imported only when a file gets this far
 
     try:
         constraint_set = constraints.load(path)

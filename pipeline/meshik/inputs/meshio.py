@@ -11,10 +11,10 @@ from typing import List, Sequence, Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
-from meshik.isolated_load import check_input_file, isolated_load
-from meshik.meshlab_module import pymeshlab_module
-from meshik.obj_text import check_obj_vertices
-from meshik.safe_paths import utf8_name
+from meshik.inputs.isolated_load import check_input_file, isolated_load
+from meshik.inputs.meshlab_module import pymeshlab_module
+from meshik.inputs.obj_text import check_obj_vertices
+from meshik.outputs.safe_paths import utf8_name
 
 # Attributes MeshLab would add to a saved file that a posed mesh does not have; each one is
 # dropped from the request when the format has no such parameter.

@@ -13,7 +13,7 @@ from collections import OrderedDict
 from pathlib import Path
 from typing import Callable, Optional, Sequence, Tuple
 
-from meshik.meshio import ExampleMeshes, load_example_set
+from meshik.inputs.meshio import ExampleMeshes, load_example_set
 
 # Resident memory of a meshik.ExampleSet per triangle and example, measured on horse-poses (132 B)
 # and elephant-poses (130 B) as the growth of a fresh process's RSS while building one (features

@@ -17,8 +17,8 @@ from typing import Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError
-from meshik.meshlab_module import pymeshlab_module
-from meshik.safe_paths import utf8_name
+from meshik.inputs.meshlab_module import pymeshlab_module
+from meshik.outputs.safe_paths import utf8_name
 
 # Mesh files larger than this are refused before reading (a bound on memory, and /dev/zero).
 MAX_INPUT_BYTES = 4 << 30

@@ -10,7 +10,7 @@ from typing import Dict, List, Sequence
 
 import numpy as np
 
-from meshik.constraints import FORMAT_NAME, FORMAT_VERSION
+from meshik.inputs.constraints import FORMAT_NAME, FORMAT_VERSION
 
 
 def farthest_point_handles(vertices: np.ndarray, count: int, start: int = 0) -> np.ndarray:

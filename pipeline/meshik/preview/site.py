@@ -13,7 +13,7 @@ from typing import Any, Dict, List, Optional
 from meshik.errors import OutputError
 
 PACKAGE_VIEWER = Path(__file__).resolve().parent / "viewer"
-NODE_MODULES = Path(__file__).resolve().parents[2] / "node_modules"
+NODE_MODULES = Path(__file__).resolve().parents[3] / "node_modules"
 APP_FILES = ("app.js", "viewer.css")
 # The npm files the page imports (relative to node_modules/), served as viewer/vendor/<path>.
 VENDOR_FILES = (

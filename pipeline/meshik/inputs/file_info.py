@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Tuple
 import numpy as np
 
 from meshik.errors import MeshFileError, PipelineError
-from meshik.isolated_load import check_input_file
+from meshik.inputs.isolated_load import check_input_file
 
 
 def describe_files(paths: List) -> Tuple[List[Dict[str, Any]], List[str]]:
@@ -41,7 +41,7 @@ def _describe(path: Path):
         return _describe_glb(path), None
     if suffix == ".json":
         return _describe_constraints(path), None
-    from meshik.meshio import load_mesh
+    from meshik.inputs.meshio import load_mesh
 
     vertices, faces = load_mesh(path)
     summary = {"file": str(path), "kind": "mesh", "vertices": len(vertices), "triangles": len(faces)}
@@ -52,7 +52,7 @@ def _describe(path: Path):
 
 def _describe_draco(path: Path) -> Dict[str, Any]:
     """Vertex / triangle counts, encoding method, and whether the original ids are present."""
-    from meshik.export_draco import EDGEBREAKER, decode
+    from meshik.export.draco import EDGEBREAKER, decode
 
     try:
         mesh = decode(path.read_bytes())
@@ -67,7 +67,7 @@ def _describe_draco(path: Path) -> Dict[str, Any]:
 
 def _describe_glb(path: Path) -> Dict[str, Any]:
     """Counts of a MeshIK animation .glb: vertices, triangles, frames, duration."""
-    from meshik.export_gltf import read_animation_glb
+    from meshik.export.glb_draco import read_animation_glb
 
     try:
         animation = read_animation_glb(path.read_bytes())
@@ -79,7 +79,7 @@ def _describe_glb(path: Path) -> Dict[str, Any]:
 
 def _describe_constraints(path: Path) -> Dict[str, Any]:
     """A validated constraint file's contents in numbers (raises ConstraintError when invalid)."""
-    from meshik.constraints import load
+    from meshik.inputs.constraints import load
 
     constraints = load(path)
     return {"file": str(path), "kind": "constraints", "rest": str(constraints.rest), "examples": len(constraints.examples),

@@ -16,13 +16,13 @@ def blend_to_file(inputs: Sequence, weights: Sequence[float], out, feature_space
     Raises PipelineError (or meshik.InputError from the core) on bad input.
     """
     import meshik
-    from meshik.export_draco import animation_grid, encode_frame
-    from meshik.meshio import load_example_set, save_mesh
-    from meshik.staging import check_writable
+    from meshik.export.draco import animation_grid, encode_frame
+    from meshik.inputs.meshio import load_example_set, save_mesh
+    from meshik.outputs.staging import check_writable
 
     inputs = [Path(p) for p in inputs]
     if len(inputs) == 1 and inputs[0].suffix.lower() == ".json":
-        from meshik.constraints import load
+        from meshik.inputs.constraints import load
 
         constraint_set = load(inputs[0])
         rest, examples = constraint_set.rest, constraint_set.examples

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 from typing import Any, Dict, Optional
 
-from meshik.example_cache import ExampleSetCache
+from meshik.posing.example_cache import ExampleSetCache
 
 # Test-only fault: "JOB,TIMES,MARKER" makes job JOB SIGKILL its own worker process half a second
 # into its run,

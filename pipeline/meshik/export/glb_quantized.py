@@ -20,12 +20,14 @@ from typing import Any, Dict, List, Sequence, Tuple
 
 import numpy as np
 
-from meshik.export_draco import QuantizationGrid
-from meshik.export_gltf import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document, check_vertex_ids,
-                                frame_names_of, glb_size_problem, key_times_of, key_weights_of)
-from meshik.gltf_container import (ARRAY_BUFFER, FLOAT, MESHOPT_EXTENSION, SHORT, UNSIGNED_SHORT, BinaryBuilder,
-                                   MeshoptBinaryBuilder, accessor, glb_bytes, read_accessor, view_reader)
-from meshik.morph_basis import low_rank_basis, morphed_positions
+from meshik.export.draco import QuantizationGrid
+from meshik.export.glb_draco import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
+                                     check_vertex_ids, frame_names_of, glb_size_problem, key_times_of,
+                                     key_weights_of)
+from meshik.export.glb_container import (ARRAY_BUFFER, FLOAT, MESHOPT_EXTENSION, SHORT, UNSIGNED_SHORT,
+                                         BinaryBuilder, MeshoptBinaryBuilder, accessor, glb_bytes, read_accessor,
+                                         view_reader)
+from meshik.export.morph_basis import low_rank_basis, morphed_positions
 
 QUANTIZATION_EXTENSION = "KHR_mesh_quantization"
 MAX_POSITION_BITS = 15   # deltas between grid points must fit a SHORT

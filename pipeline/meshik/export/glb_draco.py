@@ -16,9 +16,9 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from meshik.export_draco import ID_ATTRIBUTE, QuantizationGrid, decode, encode_frame
-from meshik.gltf_container import (ARRAY_BUFFER, COMPONENT_DTYPES, FLOAT, UNSIGNED_INT, BinaryBuilder, accessor,
-                                   glb_bytes, read_accessor, split_glb, view_reader)
+from meshik.export.draco import ID_ATTRIBUTE, QuantizationGrid, decode, encode_frame
+from meshik.export.glb_container import (ARRAY_BUFFER, COMPONENT_DTYPES, FLOAT, UNSIGNED_INT, BinaryBuilder,
+                                         accessor, glb_bytes, read_accessor, split_glb, view_reader)
 
 DRACO_EXTENSION = "KHR_draco_mesh_compression"
 ID_SEMANTIC = "_ORIGINAL_ID"
@@ -171,7 +171,7 @@ def read_animation_glb(data: bytes) -> AnimationGlb:
     document, binary = split_glb(data)
     primitive = document["meshes"][0]["primitives"][0]
     if DRACO_EXTENSION not in primitive.get("extensions", {}):
-        from meshik.export_gltf_quantized import read_quantized_glb
+        from meshik.export.glb_quantized import read_quantized_glb
 
         return read_quantized_glb(document, binary)
     view_bytes = view_reader(document, binary)

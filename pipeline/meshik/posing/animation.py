@@ -6,7 +6,7 @@ from typing import Any, Callable, Dict, Optional, Sequence
 import numpy as np
 
 from meshik.errors import PipelineError
-from meshik.meshio import ExampleMeshes
+from meshik.inputs.meshio import ExampleMeshes
 
 
 @dataclass(frozen=True)

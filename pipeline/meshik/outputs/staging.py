@@ -30,8 +30,8 @@ from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, Optional
 
 from meshik.errors import OutputError
-from meshik.folder_swap import SwapUnavailable, carry_over, swap_in
-from meshik.safe_paths import inside
+from meshik.outputs.folder_swap import SwapUnavailable, carry_over, swap_in
+from meshik.outputs.safe_paths import inside
 
 REPORT_NAME = "report.json"
 _STAGING_PREFIX = ".meshik-partial-"

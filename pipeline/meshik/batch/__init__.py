@@ -24,10 +24,10 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Sequence, TextIO
 
-from meshik.batch_display import BatchDisplay
-from meshik.batch_job import run_job
+from meshik.batch.display import BatchDisplay
+from meshik.batch.job import run_job
 from meshik.errors import OutputError, PipelineError
-from meshik.safe_paths import child_path
+from meshik.outputs.safe_paths import child_path
 
 SUMMARY_NAME = "batch-report.json"
 DEFAULT_RETRIES = 2

@@ -13,7 +13,7 @@ from typing import Optional, Tuple
 from urllib.parse import unquote, urlsplit
 
 from meshik.errors import OutputError
-from meshik.viewer_site import check_vendor_files, index_html, viewer_file
+from meshik.preview.site import check_vendor_files, index_html, viewer_file
 
 HOST = "127.0.0.1"
 _TYPES = {".js": "text/javascript", ".mjs": "text/javascript", ".wasm": "application/wasm",
