@@ -24,7 +24,8 @@ import numpy as np
 from meshik.inputs import constraints as constraint_files
 from meshik.errors import PipelineError
 from meshik.export.draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
-from meshik.export.glb_draco import animation_glb, glb_size_problem
+from meshik.export.glb_draco import animation_glb
+from meshik.export.glb_layout import glb_size_problem
 from meshik.export.glb_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
 from meshik.export.output_errors import OutputErrors
 from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
@@ -53,13 +54,13 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
     force: run even when out_dir already holds the complete outputs of the same job;
-    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
+    example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
     glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
-            is then replaced in one folder swap (meshik.staging).
+            is then replaced in one folder swap (meshik.outputs.staging).
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """

@@ -1,4 +1,4 @@
-"""The output preview: `make demo`'s index.html served by `meshik view` (meshik.view_server) opened in
+"""The output preview: `make demo`'s index.html served by `meshik view` (meshik.preview.server) opened in
 headless Chromium (Debian's `chromium` through playwright-core, tests/node/preview_check.mjs): it
 loads with no console error, the animation plays, the slider shows a chosen frame, and the contact
 sheet and report are beside it; the server gives nothing outside the folder and its fixed list."""
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from meshik import demo
-from meshik.export.glb_draco import read_animation_glb
+from meshik.export.glb_reader import read_animation_glb
 from meshik.preview.server import preview_server, resolve_request
 from meshik.preview.site import VENDOR_FILES
 from pipeline_clients import ROOT

@@ -11,7 +11,7 @@ import pytest
 
 from meshik import batch
 from meshik.export import draco as export_draco
-from meshik.export import glb_draco as export_gltf
+from meshik.export.glb_reader import read_animation_glb
 from meshik.batch import SUMMARY_NAME, job_names
 from meshik.cli import main
 from meshik.errors import PipelineError
@@ -80,7 +80,7 @@ def no_partial_file(folder):
         if path.suffix == ".drc":
             assert len(export_draco.decode(path.read_bytes()).faces) > 0, path
         elif path.suffix == ".glb":
-            assert len(export_gltf.read_animation_glb(path.read_bytes()).frames) > 0, path
+            assert len(read_animation_glb(path.read_bytes()).frames) > 0, path
         elif path.suffix == ".json":
             report = json.loads(path.read_text())
             for name, size in report.get("outputs", {}).items():

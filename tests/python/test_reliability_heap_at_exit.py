@@ -1,7 +1,7 @@
 """Processes that ran the pipeline on a thread other than the main one leave with an intact heap:
 importing pymeshlab on a thread that ends first (a batch worker's job thread) used to make the
 process corrupt glibc's heap at exit ("malloc_consolidate(): unaligned fastbin chunk detected",
-SIGABRT) after its work was done (see meshik.meshlab_module).
+SIGABRT) after its work was done (see meshik.inputs.meshlab_module).
 
 The corruption happens after Python has finished (in C++ static destructors), and glibc notices it
 only when something consolidates that heap afterwards, so by chance. To see it every time, the

@@ -1,7 +1,7 @@
 """One binary glTF (.glb) per animation: a Draco-compressed base mesh, the frames as morph targets.
 
-This module writes the Draco variant (`--glb draco`); export_gltf_quantized writes the quantized
-and meshopt ones with the same node / mesh / animation layout (animation_document).
+This module writes and reads the Draco variant (`--glb draco`); glb_quantized writes the quantized
+and meshopt ones with the same node / mesh / animation layout (glb_layout); glb_reader reads any.
 
 Layout: one mesh with one primitive whose POSITION, indices and "_ORIGINAL_ID" live in a
 KHR_draco_mesh_compression buffer (the rest pose); one morph target per frame (KHR_draco does not
@@ -9,42 +9,20 @@ compress morph targets) holding frame - decoded rest, in Draco's decoded vertex 
 rest + target k reproduces frame k to float32 precision; one animation that steps the morph
 weights through the frames at the file's frame rate (linear in between). The animation's
 #frames x #frames weights are one sparse accessor (zero but for each key's own target), so the
-file and the writer's memory grow linearly with the frames. Written by hand (gltf_container).
+file and the writer's memory grow linearly with the frames. Written by hand (glb_container).
 """
-from dataclasses import dataclass
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Sequence
 
 import numpy as np
 
 from meshik.export.draco import ID_ATTRIBUTE, QuantizationGrid, decode, encode_frame
-from meshik.export.glb_container import (ARRAY_BUFFER, COMPONENT_DTYPES, FLOAT, UNSIGNED_INT, BinaryBuilder,
-                                         accessor, glb_bytes, read_accessor, split_glb, view_reader)
+from meshik.export.glb_container import (ARRAY_BUFFER, FLOAT, UNSIGNED_INT, BinaryBuilder, accessor, glb_bytes,
+                                         read_accessor, view_reader)
+from meshik.export.glb_layout import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
+                                      check_vertex_ids, frame_names_of, glb_size_problem, key_times_of, key_weights_of,
+                                      rows_of_ids)
 
 DRACO_EXTENSION = "KHR_draco_mesh_compression"
-ID_SEMANTIC = "_ORIGINAL_ID"
-_FLOAT_EXACT_INTEGERS = 2 ** 24
-_GLB_MAX_BYTES = 2 ** 32 - 1          # the GLB header's 32-bit length
-MAX_GLB_FRAMES = 2 ** 16 - 1         # sparse weight indices (uint32) address #frames squared values
-
-
-def glb_size_problem(frames: int, vertices: int) -> Optional[str]:
-    """Why an animation of `frames` frames of `vertices` vertices cannot be one .glb, or None.
-
-    Known before posing: the morph targets alone take frames x vertices x 12 bytes.
-    """
-    if frames > MAX_GLB_FRAMES:
-        return f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb can hold"
-    estimate = frames * (vertices * 12 + 12) + vertices * 16
-    if estimate > _GLB_MAX_BYTES:
-        return (f"{frames} frames of {vertices} vertices need about {estimate / 2 ** 30:.1f} GiB of morph targets, "
-                "more than the 4 GiB a .glb file can hold")
-    return None
-
-
-def check_vertex_ids(vertex_ids: np.ndarray) -> None:
-    """ValueError unless the #V ids fit the float32 `_ORIGINAL_ID` attribute exactly (below 2**24)."""
-    if len(vertex_ids) and int(np.max(vertex_ids)) >= _FLOAT_EXACT_INTEGERS:
-        raise ValueError(f"vertex ids up to {_FLOAT_EXACT_INTEGERS} fit a glTF float attribute; got {int(np.max(vertex_ids))}")
 
 
 def animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame_names: Sequence[str],
@@ -91,123 +69,14 @@ def animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndarray, frame
     return glb_bytes(document, bytes(binary.data))
 
 
-def rows_of_ids(vertex_ids: np.ndarray, decoded_ids: np.ndarray) -> np.ndarray:
-    """For each decoded vertex, the row of `vertex_ids` (distinct ids) that carries its id."""
-    order = np.argsort(vertex_ids)
-    return order[np.searchsorted(vertex_ids[order], decoded_ids)]
-
-
-def add_frame_animation(binary: BinaryBuilder, accessors: List[Dict[str, Any]], frame_count: int, fps: float,
-                        weights: Optional[np.ndarray] = None) -> int:
-    """Append the key times (frame k at k / fps seconds) and the morph weights to `binary` and
-    `accessors`: weights (#frames by #targets, dense) when given, else #frames x #frames as one sparse
-    accessor (key k sets target k to 1); returns the times' accessor index (the weights' is the next)."""
-    times = (np.arange(frame_count) / fps).astype(np.float32)
-    times_view = binary.view(times.tobytes())
-    accessors.append(accessor(times_view, FLOAT, frame_count, "SCALAR", times.reshape(-1, 1)))
-    if weights is not None:
-        values = np.asarray(weights, dtype=np.float32).reshape(-1, 1)
-        accessors.append(accessor(binary.view(values.tobytes()), FLOAT, len(values), "SCALAR", values))
-        return len(accessors) - 2
-    keys = np.arange(frame_count, dtype=np.uint32)
-    weight_indices_view = binary.view((keys * (frame_count + 1)).tobytes())  # key k sets target k
-    weight_values_view = binary.view(np.ones(frame_count, dtype=np.float32).tobytes())
-    accessors.append({"componentType": FLOAT, "count": frame_count ** 2, "type": "SCALAR",
-                      "sparse": {"count": frame_count,
-                                 "indices": {"bufferView": weight_indices_view, "componentType": UNSIGNED_INT},
-                                 "values": {"bufferView": weight_values_view}}})
-    return len(accessors) - 2
-
-
-def animation_document(name: str, generator: str, extensions: Sequence[str], node: Dict[str, Any],
-                       primitive: Dict[str, Any], frame_names: Sequence[str], times_accessor: int,
-                       accessors: List[Dict[str, Any]], binary: BinaryBuilder) -> Dict[str, Any]:
-    """The glTF JSON of one animated mesh: node (without "mesh" and "name") places mesh 0, whose one
-    primitive has the morph targets (extras.targetNames: the frame names when there is one target
-    per frame; for a basis "basis j", and extras.frameNames the frames); animation 0 plays the
-    weights of `times_accessor`."""
-    target_count = len(primitive["targets"])
-    extras: Dict[str, Any] = {"targetNames": list(frame_names)}
-    if target_count != len(frame_names):
-        extras = {"targetNames": [f"basis {j}" for j in range(target_count)], "frameNames": list(frame_names)}
-    return {
-        "asset": {"version": "2.0", "generator": generator},
-        "extensionsUsed": list(extensions),
-        "extensionsRequired": list(extensions),
-        "scene": 0,
-        "scenes": [{"nodes": [0]}],
-        "nodes": [dict({"mesh": 0, "name": name}, **node)],
-        "meshes": [{"name": name, "primitives": [primitive], "weights": [0.0] * target_count,
-                    "extras": extras}],
-        "animations": [{"name": name, "samplers": [{"input": times_accessor, "output": times_accessor + 1,
-                                                    "interpolation": "LINEAR"}],
-                        "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]}],
-        "accessors": accessors,
-        "bufferViews": binary.views,
-        "buffers": binary.buffers(),
-    }
-
-
-@dataclass(frozen=True)
-class AnimationGlb:
-    """What read_animation_glb finds in a MeshIK .glb.
-
-    rest: #D by 3 decoded base positions (Draco order); faces: #F by 3; vertex_ids: #D;
-    frames: #frames by #D by 3 (rest + the weighted morph targets); frame_names; times: #frames
-    seconds; weights: #frames by #targets, the animation's morph weights at each key.
-    """
-    rest: np.ndarray
-    faces: np.ndarray
-    vertex_ids: np.ndarray
-    frames: np.ndarray
-    frame_names: Tuple[str, ...]
-    times: np.ndarray
-    weights: np.ndarray
-
-
-def read_animation_glb(data: bytes) -> AnimationGlb:
-    """Parse a .glb written by animation_glb or quantized_animation_glb (first mesh, first primitive).
+def read_draco_glb(document: Dict[str, Any], binary: bytes) -> AnimationGlb:
+    """The animation in a Draco-variant .glb, from its JSON document and binary chunk (split_glb).
     Raises ValueError."""
-    document, binary = split_glb(data)
-    primitive = document["meshes"][0]["primitives"][0]
-    if DRACO_EXTENSION not in primitive.get("extensions", {}):
-        from meshik.export.glb_quantized import read_quantized_glb
-
-        return read_quantized_glb(document, binary)
     view_bytes = view_reader(document, binary)
+    primitive = document["meshes"][0]["primitives"][0]
     decoded = decode(view_bytes(primitive["extensions"][DRACO_EXTENSION]["bufferView"]))
     base = decoded.vertices.astype(np.float32)
     frames = np.stack([base + read_accessor(document, view_bytes, target["POSITION"]) for target in primitive["targets"]])
     return AnimationGlb(rest=decoded.vertices, faces=decoded.faces, vertex_ids=decoded.vertex_ids,
                         frames=frames.astype(np.float64), frame_names=frame_names_of(document),
                         times=key_times_of(document, view_bytes), weights=key_weights_of(document, view_bytes))
-
-
-def frame_names_of(document: Dict[str, Any]) -> Tuple[str, ...]:
-    """The frame names a MeshIK .glb keeps in its mesh's extras (frameNames with a morph basis, else
-    targetNames)."""
-    extras = document["meshes"][0].get("extras", {})
-    return tuple(extras.get("frameNames", extras.get("targetNames", [])))
-
-
-def key_times_of(document: Dict[str, Any], view_bytes) -> np.ndarray:
-    """#frames seconds: the input of animation 0's first sampler."""
-    sampler = document["animations"][0]["samplers"][0]
-    return read_accessor(document, view_bytes, sampler["input"]).reshape(-1)
-
-
-def key_weights_of(document: Dict[str, Any], view_bytes) -> np.ndarray:
-    """#keys by #targets morph weights: the output of animation 0's first sampler (dense or sparse)."""
-    sampler = document["animations"][0]["samplers"][0]
-    entry = document["accessors"][sampler["output"]]
-    keys = document["accessors"][sampler["input"]]["count"]
-    if "sparse" not in entry:
-        return read_accessor(document, view_bytes, sampler["output"]).reshape(keys, -1)
-    values = np.zeros(entry["count"], dtype=np.float32)
-    sparse = entry["sparse"]
-    index_type = COMPONENT_DTYPES[sparse["indices"]["componentType"]]
-    indices = np.frombuffer(view_bytes(sparse["indices"]["bufferView"]), dtype=index_type, count=sparse["count"],
-                            offset=sparse["indices"].get("byteOffset", 0))
-    values[indices] = np.frombuffer(view_bytes(sparse["values"]["bufferView"]), dtype="<f4", count=sparse["count"],
-                                    offset=sparse["values"].get("byteOffset", 0))
-    return values.reshape(keys, -1)

@@ -21,12 +21,12 @@ from typing import Any, Dict, List, Sequence, Tuple
 import numpy as np
 
 from meshik.export.draco import QuantizationGrid
-from meshik.export.glb_draco import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
-                                     check_vertex_ids, frame_names_of, glb_size_problem, key_times_of,
-                                     key_weights_of)
 from meshik.export.glb_container import (ARRAY_BUFFER, FLOAT, MESHOPT_EXTENSION, SHORT, UNSIGNED_SHORT,
                                          BinaryBuilder, MeshoptBinaryBuilder, accessor, glb_bytes, read_accessor,
                                          view_reader)
+from meshik.export.glb_layout import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
+                                      check_vertex_ids, frame_names_of, glb_size_problem, key_times_of,
+                                      key_weights_of)
 from meshik.export.morph_basis import low_rank_basis, morphed_positions
 
 QUANTIZATION_EXTENSION = "KHR_mesh_quantization"
@@ -109,7 +109,7 @@ def _padded(values: np.ndarray, dtype) -> np.ndarray:
 
 def read_quantized_glb(document: Dict[str, Any], binary: bytes) -> AnimationGlb:
     """The animation of a quantized (optionally meshopt-compressed) MeshIK .glb, dequantized with
-    its node's translation and scale. document, binary: as gltf_container.split_glb returns them."""
+    its node's translation and scale. document, binary: as glb_container.split_glb returns them."""
     view_bytes = view_reader(document, binary)
     primitive = document["meshes"][0]["primitives"][0]
     translation, scale = _node_transform(document["nodes"][0])

@@ -6,7 +6,8 @@ from typing import Any, Dict
 import numpy as np
 
 from meshik.export.draco import decode
-from meshik.export.glb_draco import read_animation_glb, rows_of_ids
+from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
 
 
 class OutputErrors:

@@ -67,7 +67,7 @@ def _describe_draco(path: Path) -> Dict[str, Any]:
 
 def _describe_glb(path: Path) -> Dict[str, Any]:
     """Counts of a MeshIK animation .glb: vertices, triangles, frames, duration."""
-    from meshik.export.glb_draco import read_animation_glb
+    from meshik.export.glb_reader import read_animation_glb
 
     try:
         animation = read_animation_glb(path.read_bytes())

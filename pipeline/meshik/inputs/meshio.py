@@ -44,7 +44,7 @@ def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
 
     The file is read by MeshLab's readers in a forked child process (see isolated_load), since some
     of them crash on malformed files (an OBJ or OFF face index out of range); an OBJ's vertex lines are
-    checked first (meshik.obj_text: the reader reads a garbled coordinate as 0). MeshLab's readers drop
+    checked first (meshik.inputs.obj_text: the reader reads a garbled coordinate as 0). MeshLab's readers drop
     vertices with non-finite coordinates (and their triangles) while loading.
     """
     path = Path(path)

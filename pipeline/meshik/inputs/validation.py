@@ -1,6 +1,6 @@
 """`meshik validate`: every problem of constraint files, not only the first.
 
-The format and the mesh files are checked by the constraint-file library (meshik.constraints);
+The format and the mesh files are checked by the constraint-file library (meshik.inputs.constraints);
 a file without such problems is then resolved against its rest mesh, which finds vertex indices
 out of range, empty regions and groups that overlap.
 """

@@ -4,7 +4,7 @@ A job writes its files into a hidden staging folder. How commit() moves them int
 on where the destination lies:
 - Inside a folder that the run owns as a whole (a batch's --out, given as `within`): the staging
   folder is the destination's sibling, holds the complete new result with report.json, and is
-  swapped with the destination in one directory-entry exchange (meshik.folder_swap). At every
+  swapped with the destination in one directory-entry exchange (meshik.outputs.folder_swap). At every
   instant the destination is the complete old result or the complete new one. Files in the old
   folder that no run provably wrote (a user's notes, an edited output) are hard-linked across first.
 - Otherwise (`meshik pose --out FOLDER`: swapping FOLDER itself would write beside it, outside

@@ -1,7 +1,7 @@
 """`meshik view OUT`: serves an output folder's preview on 127.0.0.1 with Python's http.server.
 
 Served: "/" (the page, made from the folder's jobs at each request), "/viewer/..." (the app and the
-fixed list of npm files, meshik.viewer_site) and the files inside OUT; nothing else: a path that
+fixed list of npm files, meshik.preview.site) and the files inside OUT; nothing else: a path that
 leaves OUT (.., a link pointing out) is answered 404. GET and HEAD only.
 """
 import mimetypes

@@ -1,4 +1,4 @@
-"""The files of the output preview (meshik/viewer/): the page with the output folder's jobs, the app,
+"""The files of the output preview (meshik/preview/viewer/): the page with the output folder's jobs, the app,
 and the three.js and meshoptimizer files it imports, from a fixed list of the pinned npm packages
 (node_modules/, installed by scripts/setup.sh node). No network: everything is served locally.
 
