@@ -139,7 +139,12 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
     """Options shared by `pose` and `batch`."""
     parser.add_argument("--out", "-o", required=True, type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--simplify", type=_simplify_target, metavar="N",
-                        help="simplify before posing: N triangles (an integer) or the fraction of triangles to keep (e.g. 0.25)")
+                        help="write a lighter animation of N triangles (an integer) or the fraction of triangles to keep "
+                             "(e.g. 0.25): every frame is posed at full resolution, then simplified as the examples were, "
+                             "so it moves like the full animation")
+    parser.add_argument("--simplify-first", action="store_true",
+                        help="with --simplify: pose the simplified examples instead (faster per frame, but the "
+                             "simplified mesh may choose other example weights: a limb can move differently)")
     parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
                         help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
                              "with handles locked and the error summed over all poses (default fast)")
@@ -173,7 +178,7 @@ def _run_pose(args) -> int:
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
                       force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                      glb_targets=args.glb_targets)
+                      glb_targets=args.glb_targets, simplify_first=args.simplify_first)
     if report.get("skipped") and not args.quiet:
         print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
     return 0
@@ -196,7 +201,7 @@ def _run_batch(args) -> int:
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
                          threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                         glb_targets=args.glb_targets)
+                         glb_targets=args.glb_targets, simplify_first=args.simplify_first)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)

@@ -141,18 +141,29 @@ def surface_distance(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np
     MeshLab's sampler: every vertex plus points on edges and faces (about `samples` per mesh),
     each measured to the nearest point of the other surface; returns the largest distance.
     """
+    return surface_deviation(vertices_a, faces_a, vertices_b, faces_b, samples)[1]
+
+
+def surface_deviation(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np.ndarray, faces_b: np.ndarray,
+                      samples: int = 100000) -> Tuple[float, float]:
+    """(mean, max) distance between two triangle meshes (#V by 3 positions, #F by 3 each), both ways.
+
+    MeshLab's Hausdorff sampler run from each mesh to the other (about `samples` points per mesh):
+    max is the symmetric Hausdorff distance, mean the average of the two directions' mean distances.
+    """
     pymeshlab = pymeshlab_module()
 
     meshes = pymeshlab.MeshSet()
     for vertices, faces in ((vertices_a, faces_a), (vertices_b, faces_b)):
         meshes.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(vertices, dtype=np.float64),
                                        face_matrix=np.asarray(faces, dtype=np.int32)))
-    worst = 0.0
+    means, worst = [], 0.0
     for sampled, target in ((0, 1), (1, 0)):
         result = meshes.get_hausdorff_distance(sampledmesh=sampled, targetmesh=target, samplevert=True, sampleedge=True,
                                                sampleface=True, samplenum=samples, maxdist=pymeshlab.PercentageValue(100))
+        means.append(result["mean"])
         worst = max(worst, result["max"])
-    return worst
+    return float(np.mean(means)), worst
 
 
 def saveable_format(extension: str) -> bool:
