@@ -33,7 +33,7 @@ def main() -> int:
     folders = gallop_data(__doc__, "bench_simplify")
     if folders is None:
         return 0
-    from meshik import constraints
+    from meshik.inputs import constraints
     from meshik.inputs.meshio import load_example_set
     from meshik.posing.animation import pose_animation
 
