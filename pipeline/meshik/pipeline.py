@@ -17,7 +17,7 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
@@ -30,8 +30,9 @@ from meshik.output_errors import OutputErrors
 from meshik.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
+from meshik.terminal_text import one_line
 from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
-from meshik.staging import StagedOutput, check_writable, is_complete, read_report
+from meshik.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
@@ -104,6 +105,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     too_large = glb_size_problem(len(resolved.frame_names), len(posed_meshes.rest)) if "glb" in formats else None
     if too_large:
         raise PipelineError(f"{constraints_path}: {too_large}: leave glb out of --format or split the animation")
+    inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
+    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, simplified is not None), inputs)
 
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
         posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
@@ -131,7 +134,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
                          posed, fit, grid, clock.laps)
         report["compressed_outputs"] = errors.report()
-        report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
+        report = staged.commit(report, inputs=inputs)
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
     return dict(report, skipped=False)
@@ -218,6 +221,15 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 advance()
             if simplified and "vertex_ids.txt" not in staged.files:
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
+
+
+def _output_names(name: str, formats: Tuple[str, ...], frame_names: Sequence[str], simplified: bool) -> List[str]:
+    """Every file a job writes, relative to its folder (report.json included), as _export names them."""
+    names = [REPORT_NAME] + [f"{name}.glb" for fmt in formats if fmt == "glb"]
+    names += [f"frames/{frame}.{fmt}" for fmt in formats if fmt != "glb" for frame in frame_names]
+    if simplified and any(fmt not in DEFAULT_FORMATS for fmt in formats):
+        names.append("vertex_ids.txt")
+    return names
 
 
 def _file_count(formats: Tuple[str, ...], frames: int) -> int:
@@ -316,4 +328,4 @@ class _Announcer:
     def __call__(self, message: str) -> None:
         """Print one line for this job (nothing when quiet)."""
         if not self.quiet:
-            print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)
+            print(one_line(f"{self.name}: {message}"), file=self.stream or sys.stderr, flush=True)
