@@ -9,6 +9,7 @@
 #include "gradient_operator.h"
 #include "input_validation.h"
 #include "locality_order.h"
+#include "meshik/thread_limit.h"
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
@@ -102,7 +103,9 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     example_pointers.push_back(internal_examples.back().data());
   }
   clock.lap("locality order");
-  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                     std::to_string(threads));
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);

@@ -20,7 +20,7 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
@@ -34,8 +34,9 @@ from meshik.export.output_errors import OutputErrors
 from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing.animation import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
+from meshik.terminal_text import one_line
 from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_poses
-from meshik.outputs.staging import StagedOutput, check_writable, is_complete, read_report
+from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
@@ -111,6 +112,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     too_large = glb_size_problem(len(resolved.frame_names), output_count) if "glb" in formats else None
     if too_large:
         raise PipelineError(f"{constraints_path}: {too_large}: leave glb out of --format or split the animation")
+    inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
+    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, simplified is not None), inputs)
 
     pose_first = simplified is None or not simplify_first
     pose_meshes, pose_handles, pose_targets = (meshes, resolved.handles, resolved.targets) if pose_first \
@@ -145,7 +148,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         report = _report(name, key, constraint_set, meshes, simplified, (simplifier, simplify_first), solver_options,
                          resolved, posed, fit, grid, clock.laps)
         report["compressed_outputs"] = errors.report()
-        report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
+        report = staged.commit(report, inputs=inputs)
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
     return dict(report, skipped=False)
@@ -154,7 +157,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
 def _simplify_posed(meshes, simplified: SimplifiedMeshes, posed: PosedAnimation):
     """(simplified meshes with their rest re-simplified, posed with its frames simplified, simplified with
     the final count of vertices put back): the full-resolution rest and frames simplified alike
-    (meshik.simplify.simplify_poses)."""
+    (meshik.posing.simplify.simplify_poses)."""
     poses, snap_mask = simplify_poses(simplified, meshes.faces, np.concatenate([meshes.rest[None], posed.vertices]))
     if simplified.snap_mask is not None:
         simplified = dataclasses.replace(simplified, snapped=int(snap_mask.sum()), snap_mask=snap_mask)
@@ -244,6 +247,15 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 advance()
             if simplified and "vertex_ids.txt" not in staged.files:
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
+
+
+def _output_names(name: str, formats: Tuple[str, ...], frame_names: Sequence[str], simplified: bool) -> List[str]:
+    """Every file a job writes, relative to its folder (report.json included), as _export names them."""
+    names = [REPORT_NAME] + [f"{name}.glb" for fmt in formats if fmt == "glb"]
+    names += [f"frames/{frame}.{fmt}" for fmt in formats if fmt != "glb" for frame in frame_names]
+    if simplified and any(fmt not in DEFAULT_FORMATS for fmt in formats):
+        names.append("vertex_ids.txt")
+    return names
 
 
 def _file_count(formats: Tuple[str, ...], frames: int) -> int:
@@ -345,4 +357,4 @@ class _Announcer:
     def __call__(self, message: str) -> None:
         """Print one line for this job (nothing when quiet)."""
         if not self.quiet:
-            print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)
+            print(one_line(f"{self.name}: {message}"), file=self.stream or sys.stderr, flush=True)

@@ -71,8 +71,9 @@ def _describe_glb(path: Path) -> Dict[str, Any]:
 
     try:
         animation = read_animation_glb(path.read_bytes())
-    except (ValueError, KeyError, IndexError, TypeError) as error:
-        raise MeshFileError(f"{path}: not a MeshIK animation .glb ({type(error).__name__}: {error})") from None
+    except (ValueError, KeyError, IndexError, TypeError) as error:  # the fields are checked first (gltf_checks)
+        detail = " ".join(str(error).split())[:300]
+        raise MeshFileError(f"{path}: not a MeshIK animation .glb ({type(error).__name__}: {detail})") from None
     return {"file": str(path), "kind": "glb animation", "vertices": len(animation.rest), "triangles": len(animation.faces),
             "frames": len(animation.frames), "duration_seconds": float(animation.times[-1]) if len(animation.times) else 0.0}
 
