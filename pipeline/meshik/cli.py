@@ -169,10 +169,13 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
-    parser.add_argument("--glb", dest="glb", choices=("meshopt", "quantized", "draco"), default="meshopt",
-                        help="the .glb: meshopt (quantized positions and morph targets, EXT_meshopt_compression; "
-                             "default), quantized (KHR_mesh_quantization only: Blender before 5.2 and readers without "
-                             "a meshopt decoder) or draco (Draco base mesh, float32 morph targets)")
+    parser.add_argument("--glb", dest="glb", choices=("quantized", "meshopt", "draco"), default="quantized",
+                        help="the .glb: quantized (default: KHR_mesh_quantization; opens in Blender, three.js, "
+                             "Babylon.js and is fully checked by the Khronos validator), meshopt (opt-in: the same "
+                             "compressed with EXT_meshopt_compression, about 1/3 the bytes; needs a meshopt decoder: "
+                             "three.js, Babylon.js, glTF-Transform; Blender 5.0.1 refuses it, its importer reads it "
+                             "from 5.2) or draco (Draco base mesh, float32 morph targets; Blender, and three.js or "
+                             "Babylon.js with a Draco decoder). Morph weights stay in [0, 1] in every variant")
     parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
                         help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
                              "(1 to 15, default 14)")

@@ -3,9 +3,10 @@
     report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
 
 Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
-"original_id" attribute), <job>.glb (morph targets + animation; glb="meshopt": positions and deltas
-quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same without
-meshopt, both with a low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
+"original_id" attribute), <job>.glb (morph targets + animation, weights in [0, 1]; glb="quantized",
+the default: positions and deltas quantized on one position_bits grid, read by every reader tested;
+"meshopt": the same with EXT_meshopt_compression, which Blender 5.0.1 refuses; both with a
+low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
 "draco": a Draco base mesh and one float32 target per frame),
 frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
 output vertex, when simplified), and report.json (written last). A simplified job poses at full
@@ -40,7 +41,7 @@ from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, 
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
-GLB_VARIANTS = ("meshopt", "quantized", "draco")
+GLB_VARIANTS = ("quantized", "meshopt", "draco")
 DEFAULT_POSITION_BITS = 14
 GENERATOR = "MeshIK pipeline"
 
@@ -49,7 +50,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
-             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS,
+             glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
              glb_targets: str = "basis", within=None, simplify_first: bool = False) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
@@ -63,7 +64,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
-    glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
+    glb: the .glb variant ("quantized", "meshopt" or "draco"; meshik.export.glb_readers says who reads each); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
