@@ -26,7 +26,7 @@ def main() -> int:
     gzipped, 1/10 of them."""
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
     from bench_pipeline import gallop_constraints, gallop_data
-    from meshik.export_gltf import read_animation_glb
+    from meshik.export.glb_reader import read_animation_glb
     from meshik.pipeline import pose_job
 
     folders = gallop_data(__doc__, "bench_glb")

@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 from conftest import SHARED_DATA, example_set_files
-from meshik import export_draco
-from meshik.export_gltf import animation_glb
-from meshik.export_gltf_quantized import quantized_animation_glb
-from meshik.glb_readers import readers_of
-from meshik.gltf_container import glb_bytes, split_glb
-from meshik.meshio import load_mesh
+from meshik.export.draco import animation_grid
+from meshik.export.glb_container import glb_bytes, split_glb
+from meshik.export.glb_draco import animation_glb
+from meshik.export.glb_quantized import quantized_animation_glb
+from meshik.export.glb_readers import readers_of
+from meshik.inputs.meshio import load_mesh
 from meshik.pipeline import pose_job
 
 # label: (--glb, --glb-targets); draco has one target per frame whatever --glb-targets says
@@ -69,7 +69,7 @@ def bar_cases(samples_dir: pathlib.Path, scratch: pathlib.Path) -> Dict[str, Glb
 def gallop_cases(shared_data: pathlib.Path, scratch: pathlib.Path) -> Dict[str, GlbCase]:
     """{"<variant label> gallop": GlbCase}: the default .glb of `pose_job` on the tracked gallop, and the
     quantized frames and draco files written from the same frames; {} without the data."""
-    from meshik.tracking import farthest_point_handles, tracking_document
+    from meshik.inputs.tracking import farthest_point_handles, tracking_document
 
     folder = shared_data / "horse-gallop"
     if not folder.is_dir():
@@ -84,13 +84,13 @@ def gallop_cases(shared_data: pathlib.Path, scratch: pathlib.Path) -> Dict[str, 
     entry = report["compressed_outputs"]["gallop.glb"]
     frames = solver_frames(scratch / "gallop", report)
     names = [frame["name"] for frame in report["frames"]]
-    grid = export_draco.animation_grid(np.concatenate([frames, rest[None]]), entry["position_bits"])
+    grid = animation_grid(np.concatenate([frames, rest[None]]), entry["position_bits"])
     ids = np.arange(len(rest))
     per_frame = quantized_animation_glb(rest, faces, frames, names, ids, grid, report["fps"], "gallop", "test",
                                         meshopt=False, targets="frames")
-    draco = animation_glb(rest, faces, frames, names, ids, grid, report["fps"], "gallop", "test")
     (scratch / "gallop_frames.glb").write_bytes(per_frame)
-    (scratch / "gallop_draco.glb").write_bytes(draco)
+    (scratch / "gallop_draco.glb").write_bytes(animation_glb(rest, faces, frames, names, ids, grid, report["fps"],
+                                                             "gallop", "test"))
     return {"quantized basis gallop": GlbCase(scratch / "gallop" / "gallop.glb", entry["variant"], frames, ids, grid.step,
                                               entry["readers"]),
             "quantized frames gallop": GlbCase(scratch / "gallop_frames.glb", "quantized", frames, ids, grid.step,

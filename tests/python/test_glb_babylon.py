@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from glb_variants import LABELS, glb_cases  # noqa: F401 - glb_cases is a fixture
-from meshik.export_gltf import read_animation_glb, rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
+from meshik.export.glb_layout import rows_of_ids
 from pipeline_clients import ROOT
 
 PLAYER = ROOT / "tests" / "node" / "babylon_glb.mjs"

@@ -4,10 +4,12 @@ every frame decodes (float32, as a viewer mixes the targets) within the grid's r
 import numpy as np
 import pytest
 
-from meshik import export_draco, export_gltf
-from meshik.export_gltf_quantized import BASIS_TOLERANCE, quantized_animation_glb
-from meshik.gltf_container import split_glb
-from meshik.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
+from meshik.export import draco as export_draco
+from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
+from meshik.export.glb_quantized import BASIS_TOLERANCE, quantized_animation_glb
+from meshik.export.glb_container import split_glb
+from meshik.export.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
 
 
 def sheet(side: int):
@@ -26,9 +28,9 @@ def write_and_read(rest, faces, frames, targets="basis", bits=12):
     names = [f"f{k}" for k in range(len(frames))]
     data = quantized_animation_glb(rest, faces, frames, names, np.arange(len(rest)), grid, 24.0, "t", "test",
                                    targets=targets)
-    read = export_gltf.read_animation_glb(data)
+    read = read_animation_glb(data)
     assert read.frame_names == tuple(names)
-    return read, export_gltf.rows_of_ids(np.arange(len(rest)), read.vertex_ids), grid, split_glb(data)[0]
+    return read, rows_of_ids(np.arange(len(rest)), read.vertex_ids), grid, split_glb(data)[0]
 
 
 def periodic_frames(rest: np.ndarray, count: int, period: int) -> np.ndarray:

@@ -6,10 +6,13 @@ import json
 import numpy as np
 import pytest
 
-from meshik import _meshopt, export_draco, export_gltf
+from meshik import _meshopt
+from meshik.export import draco as export_draco
+from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
 from meshik.cli import main
-from meshik.export_gltf_quantized import MAX_POSITION_BITS, quantized_animation_glb
-from meshik.gltf_container import split_glb
+from meshik.export.glb_quantized import MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.glb_container import split_glb
 
 
 def canonical(indices: np.ndarray) -> np.ndarray:
@@ -82,8 +85,8 @@ def test_quantized_glb_reproduces_every_frame_on_the_grid(animation, meshopt):
     rest, faces, frames, ids = animation
     grid = export_draco.animation_grid(np.concatenate([frames, rest[None]]), 10)
     data = quantized_animation_glb(rest, faces, frames, ["a", "b", "c"], ids, grid, 30.0, "grid", "test", meshopt=meshopt)
-    read = export_gltf.read_animation_glb(data)
-    rows = export_gltf.rows_of_ids(ids, read.vertex_ids)
+    read = read_animation_glb(data)
+    rows = rows_of_ids(ids, read.vertex_ids)
     assert sorted(read.vertex_ids) == sorted(ids) and read.frame_names == ("a", "b", "c")
     assert np.linalg.norm(read.frames - frames[:, rows], axis=2).max() <= grid.step * np.sqrt(3) / 2 * 1.0001
     # morph weights inside [0, 1] (the basis moved to its weights' corner), and the default ones show frame 0
