@@ -45,7 +45,9 @@ test-portable: setup $(BUILD_PORTABLE)/build.ninja
 	cmake --build $(BUILD_PORTABLE) -j $(JOBS)
 	ctest --test-dir $(BUILD_PORTABLE) --output-on-failure -j $(JOBS)
 
+# The Blender reader test needs bpy in its own venv (about 1 GB): installed here, not by `make demo`.
 test-python: build
+	@scripts/setup.sh blender
 	$(PY) -m pytest -q tests/python
 
 test: test-cpp test-asan test-portable test-python
