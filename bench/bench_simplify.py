@@ -34,9 +34,9 @@ def main() -> int:
     folders = gallop_data(__doc__, "bench_simplify")
     if folders is None:
         return 0
-    from meshik import constraints
-    from meshik.meshio import load_example_set
-    from meshik.posing import pose_animation
+    from meshik.inputs import constraints
+    from meshik.inputs.meshio import load_example_set
+    from meshik.posing.animation import pose_animation
 
     with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
         constraint_set = constraints.load(gallop_constraints(*folders, pathlib.Path(scratch)))
@@ -59,8 +59,8 @@ def main() -> int:
 
 def bench_row(meshes, resolved, options, full, method: str, size) -> bool:
     """One row of the table; returns whether the default meets the floor (and the handles their targets)."""
-    from meshik.posing import pose_animation
-    from meshik.simplify import remap_handles, simplify, simplify_animation
+    from meshik.posing.animation import pose_animation
+    from meshik.posing.simplify import remap_handles, simplify, simplify_animation
 
     target = size if isinstance(size, int) else int(round(size * len(meshes.faces)))
     start = time.perf_counter()
@@ -97,7 +97,7 @@ def bench_row(meshes, resolved, options, full, method: str, size) -> bool:
 def deviations(simplified_frames, faces, full_frames, full_faces) -> np.ndarray:
     """#frames by 2 (mean, worst) deviation of each simplified frame from its full frame, / the full
     frame's bbox diagonal. simplified_frames: #frames by #S by 3 on faces; full_frames: #frames by #V by 3."""
-    from meshik.meshio import surface_deviation
+    from meshik.inputs.meshio import surface_deviation
 
     rows = []
     for simplified, original in zip(simplified_frames, full_frames):

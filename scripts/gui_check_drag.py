@@ -56,7 +56,7 @@ def mesh_points(path, box):
 def check_pose(constraints_path, pose_path, weights_text):
     import meshik
     import pymeshlab
-    from meshik import constraints
+    from meshik.inputs import constraints
 
     def load(path):
         ms = pymeshlab.MeshSet()

@@ -3,9 +3,10 @@
     report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
 
 Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
-"original_id" attribute), <job>.glb (morph targets + animation; glb="meshopt": positions and deltas
-quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same without
-meshopt, both with a low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
+"original_id" attribute), <job>.glb (morph targets + animation, weights in [0, 1]; glb="quantized",
+the default: positions and deltas quantized on one position_bits grid, read by every reader tested;
+"meshopt": the same with EXT_meshopt_compression, which Blender 5.0.1 refuses; both with a
+low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
 "draco": a Draco base mesh and one float32 target per frame),
 frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
 output vertex, when simplified), and report.json (written last). A simplified job poses at full
@@ -20,25 +21,27 @@ import json
 import sys
 import time
 from pathlib import Path
-from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
-from meshik import constraints as constraint_files
+from meshik.inputs import constraints as constraint_files
 from meshik.errors import PipelineError
-from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
-from meshik.export_gltf import animation_glb, glb_size_problem
-from meshik.export_gltf_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
-from meshik.output_errors import OutputErrors
-from meshik.meshio import load_example_set, save_mesh, saveable_format
-from meshik.posing import PosedAnimation, pose_animation
+from meshik.export.draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
+from meshik.export.glb_draco import animation_glb
+from meshik.export.glb_layout import glb_size_problem
+from meshik.export.glb_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.output_errors import OutputErrors
+from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
+from meshik.posing.animation import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
-from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_animation
-from meshik.staging import StagedOutput, check_writable, is_complete, read_report
+from meshik.terminal_text import one_line
+from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_animation
+from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
-GLB_VARIANTS = ("meshopt", "quantized", "draco")
+GLB_VARIANTS = ("quantized", "meshopt", "draco")
 DEFAULT_POSITION_BITS = 14
 GENERATOR = "MeshIK pipeline"
 
@@ -47,7 +50,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
-             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS,
+             glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
              glb_targets: str = "basis", within=None, simplify_first: bool = False) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
@@ -59,13 +62,13 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
     force: run even when out_dir already holds the complete outputs of the same job;
-    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
+    example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
-    glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
+    glb: the .glb variant ("quantized", "meshopt" or "draco"; meshik.export.glb_readers says who reads each); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
-            is then replaced in one folder swap (meshik.staging).
+            is then replaced in one folder swap (meshik.outputs.staging).
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """
@@ -107,6 +110,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         _check_glb_size(constraints_path, formats, len(resolved.frame_names), pose_meshes.rest)
     clock.lap("simplify")
     handles, kept = remap_handles(simplified, resolved.handles)
+    inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
+    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, target is not None), inputs)
+
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
         posed = pose_animation(pose_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
                                context=str(constraint_set.rest), features=features if simplified is None else None,
@@ -142,7 +148,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         report = _report(name, key, constraint_set, meshes, simplified, (simplifier, simplify_first), solver_options,
                          resolved, posed, fit, grid, clock.laps)
         report["compressed_outputs"] = errors.report()
-        report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
+        report = staged.commit(report, inputs=inputs)
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
     return dict(report, skipped=False)
@@ -237,6 +243,15 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 advance()
             if simplified and "vertex_ids.txt" not in staged.files:
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
+
+
+def _output_names(name: str, formats: Tuple[str, ...], frame_names: Sequence[str], simplified: bool) -> List[str]:
+    """Every file a job writes, relative to its folder (report.json included), as _export names them."""
+    names = [REPORT_NAME] + [f"{name}.glb" for fmt in formats if fmt == "glb"]
+    names += [f"frames/{frame}.{fmt}" for fmt in formats if fmt != "glb" for frame in frame_names]
+    if simplified and any(fmt not in DEFAULT_FORMATS for fmt in formats):
+        names.append("vertex_ids.txt")
+    return names
 
 
 def _file_count(formats: Tuple[str, ...], frames: int) -> int:
@@ -338,4 +353,4 @@ class _Announcer:
     def __call__(self, message: str) -> None:
         """Print one line for this job (nothing when quiet)."""
         if not self.quiet:
-            print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)
+            print(one_line(f"{self.name}: {message}"), file=self.stream or sys.stderr, flush=True)

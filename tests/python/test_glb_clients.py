@@ -9,8 +9,8 @@ import subprocess
 import numpy as np
 import pytest
 
-from meshik.export_gltf import read_animation_glb
-from meshik.meshio import load_mesh
+from meshik.export.glb_reader import read_animation_glb
+from meshik.inputs.meshio import load_mesh
 from meshik.pipeline import pose_job
 from pipeline_clients import ROOT, validate_and_check_no_errors
 

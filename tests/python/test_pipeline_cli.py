@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from meshik.cli import main
-from meshik.meshio import load_mesh
+from meshik.inputs.meshio import load_mesh
 from pipeline_meshes import bend, tube_constraints, write_constraints, write_obj, write_tube_set
 
 

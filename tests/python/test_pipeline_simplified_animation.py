@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from meshik.cli import main
-from meshik.meshio import load_mesh
+from meshik.inputs.meshio import load_mesh
 from meshik.pipeline import pose_job
-from meshik.tracking import farthest_point_handles, tracking_document
+from meshik.inputs.tracking import farthest_point_handles, tracking_document
 from conftest import example_set_files
 
 # the .ply frames carry the solver's doubles to within this fraction of the diagonal
