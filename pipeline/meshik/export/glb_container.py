@@ -11,7 +11,7 @@ from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 
-from meshik.inputs.gltf_checks import check_document
+from meshik.export.gltf_checks import check_document
 
 MESHOPT_EXTENSION = "EXT_meshopt_compression"
 GLB_MAGIC, GLB_VERSION = 0x46546C67, 2
@@ -125,7 +125,7 @@ def glb_bytes(document: Dict[str, Any], binary: bytes) -> bytes:
 
 def split_glb(data: bytes) -> Tuple[Dict[str, Any], bytes]:
     """(JSON document, binary chunk) of GLB bytes; ValueError when the container is malformed or a
-    field MeshIK's readers use is not what they need (meshik.inputs.gltf_checks)."""
+    field MeshIK's readers use is not what they need (meshik.export.gltf_checks)."""
     if len(data) < 20:
         raise ValueError("not a GLB file: too short")
     magic, version, length = struct.unpack_from("<III", data, 0)
