@@ -35,7 +35,7 @@ RichParameterList poseParameters(const MeshDocument& document) {
       "clustered from how the examples deform (so legs can take one example's stride and the body another's), "
       "blended smoothly across their borders; 0 = the count chosen from the examples."));
   parameters.addParam(RichFloat(
-      "regionsmoothness", 1.0f, "Region smoothness",
+      "regionsmoothness", 0.01f, "Region smoothness",
       "Pull between neighbouring regions' weights (with few handles it makes them one global vector)."));
   parameters.addParam(RichBool(
       "inplace", false, "Pose in place",

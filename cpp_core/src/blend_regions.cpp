@@ -74,19 +74,30 @@ void finish_regions(const TriangleAdjacency& adjacency, double smoothness, Blend
     }
 }
 
-// Per triangle (internal order): its features across the examples, 9 #E values (rotation log and
-// projected stretch of each example), as one row of a #F by 9 #E matrix.
-Eigen::MatrixXd triangle_features(const ExampleSet::Impl& set) {
+// Per triangle (internal order): how it moves across the examples, the displacement of its
+// centroid from the rest in each example (3 #E values, one row of a #F by 3 #E matrix). The
+// example poses are recovered from the features by the set's own blend at w = e_i (exact up to
+// the features' rounding; translation by the examples' centroids).
+Eigen::MatrixXd triangle_motion(const ExampleSet& examples) {
+  const ExampleSet::Impl& set = examples.impl();
   const int m = set.num_triangles, k = set.num_examples;
-  Eigen::MatrixXd features(m, 9 * k);
-  visit_feature_values(set.features, [&](const auto& values) {
+  Eigen::MatrixXd motion(m, 3 * k);
+  std::vector<double> unit(k, 0.0);
+  for (int i = 0; i < k; ++i) {
+    unit.assign(k, 0.0);
+    unit[i] = 1.0;
+    const std::vector<double> pose = set.to_internal(examples.blend(unit.data()).data());
     for (int j = 0; j < m; ++j)
-      for (int i = 0; i < k; ++i)
-        for (int row = 0; row < 9; ++row)
-          features(j, 9 * i + row) = static_cast<double>(
-              values.nonlinear[((static_cast<size_t>(j / kLanes) * k + i) * 9 + row) * kLanes + j % kLanes]);
-  });
-  return features;
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (int q = 0; q < 3; ++q) {
+          const size_t v = 3 * static_cast<size_t>(set.triangles[3 * j + q]) + c;
+          sum += pose[v] - set.rest[v];
+        }
+        motion(j, 3 * i + c) = sum / 3.0;
+      }
+  }
+  return motion;
 }
 
 // k-means of the rows of features into count clusters (farthest-point seeds from the row farthest
@@ -178,11 +189,12 @@ BlendRegions regions_from_vertex_groups(const ExampleSet::Impl& set, const std::
   return regions;
 }
 
-BlendRegions regions_from_examples(const ExampleSet::Impl& set, int count, double smoothness) {
+BlendRegions regions_from_examples(const ExampleSet& examples, int count, double smoothness) {
+  const ExampleSet::Impl& set = examples.impl();
   const TriangleAdjacency adjacency = triangle_adjacency(set.triangles.data(), set.num_triangles, set.num_vertices);
   const int m = set.num_triangles;
   if (count == 1 || set.num_examples == 0) return regions_from_labels(set, adjacency, std::vector<int>(m, 0), 1, smoothness);
-  const Eigen::MatrixXd features = triangle_features(set);
+  const Eigen::MatrixXd features = triangle_motion(examples);
   if (count != kAutomaticRegions) {
     double spread = 0.0;
     return regions_from_labels(set, adjacency, cluster_rows(features, std::min(count, m), &spread), std::min(count, m),

@@ -37,9 +37,9 @@ struct BlendRegions {
 BlendRegions regions_from_vertex_groups(const ExampleSet::Impl& set, const std::vector<int>& vertex_regions,
                                         double smoothness);
 
-// count regions (>= 1, or kAutomaticRegions) clustered from the examples: k-means of the triangles'
-// features (rotation logs and stretches of every example), farthest-point seeded, then softened
-// borders. One region gives every triangle alpha = 1.
-BlendRegions regions_from_examples(const ExampleSet::Impl& set, int count, double smoothness);
+// count regions (>= 1, or kAutomaticRegions) clustered from the examples: k-means of how the
+// triangles move (each example's displacement of the triangle's centroid from the rest),
+// farthest-point seeded, then softened borders. One region gives every triangle alpha = 1.
+BlendRegions regions_from_examples(const ExampleSet& examples, int count, double smoothness);
 
 }  // namespace meshik

@@ -77,7 +77,7 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
     impl_->regions = std::make_unique<BlendRegions>(
         regions_from_vertex_groups(set, options.vertex_regions, options.region_smoothness));
   else if (options.regions != 1)
-    impl_->regions = std::make_unique<BlendRegions>(regions_from_examples(set, options.regions, options.region_smoothness));
+    impl_->regions = std::make_unique<BlendRegions>(regions_from_examples(*impl_->examples, options.regions, options.region_smoothness));
 }
 
 Solver::~Solver() = default;
@@ -91,15 +91,22 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   if (initial_weights != nullptr) validate_finite(initial_weights, num_weights(), "initial weight");
   const SolverOptions& options = impl_->options;
   BuffersLease lease(impl_->pool_mutex, impl_->pool);
-  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization,
-                          targets, lease.buffers(), thread_count(options.threads), options.blend,
-                          impl_->regions.get());
+  const int team = thread_count(options.threads);
   Eigen::VectorXd start;
   if (initial_weights == nullptr) {
-    // Every region starts from the one global vector of the linear space.
-    start = impl_->linear_start->weights(targets, options.weight_regularization).replicate(num_weights() / std::max(1, set.num_examples), 1);
+    start = impl_->linear_start->weights(targets, options.weight_regularization);
+    if (impl_->regions) {
+      // Regions start from the one global vector that solves the pose without them (from the
+      // linear space's), every region alike: the regions' solve then only lowers that energy.
+      PoseEvaluator global(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
+                           lease.buffers(), team, options.blend);
+      const SolveResult one = gauss_newton(global, set.num_examples, set.num_triangles, start.data(), options, {});
+      start = Eigen::Map<const Eigen::VectorXd>(one.weights.data(), set.num_examples).replicate(num_regions(), 1);
+    }
     initial_weights = start.data();
   }
+  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
+                          lease.buffers(), team, options.blend, impl_->regions.get());
   SolveResult result =
       gauss_newton(evaluator, evaluator.num_weights(), set.num_triangles, initial_weights, options, progress);
   result.vertices = set.to_user(result.vertices);

@@ -399,7 +399,7 @@ NB_MODULE(_core, m) {
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
            "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none(),
            "threads"_a = nb::none(), "feature_precision"_a = "single", "blend"_a = "affine",
-           "regions"_a = 1, "region_smoothness"_a = 1.0,
+           "regions"_a = 1, "region_smoothness"_a = 0.01,
            "blend: 'affine' (stretches tied to the rest, default) or 'free' (the paper's "
            "sum_i w_i S_i); regions: 1 (one weight vector), a count of regions clustered from the "
            "examples, 'auto', or (n,) vertex groups (-1: none); the weights are then (regions, k) "
@@ -416,7 +416,7 @@ NB_MODULE(_core, m) {
           "example_set"_a, "handles"_a, "feature_space"_a = "nonlinear",
           "weight_regularization"_a = 0.0, "max_iterations"_a = 30, "tolerance"_a = 1e-10,
           "progress"_a = nb::none(), "threads"_a = nb::none(), "blend"_a = "affine", "regions"_a = 1,
-          "region_smoothness"_a = 1.0,
+          "region_smoothness"_a = 0.01,
           "A solver sharing example_set's precomputed features. threads: of each solve (None: all "
           "cores; the pose is the same bits for any count).")
       .def("solve", &solve, "targets"_a, "initial_weights"_a = nb::none(),

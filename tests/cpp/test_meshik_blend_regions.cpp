@@ -223,7 +223,7 @@ TEST_P(ReducedEnergy, FreeGradientAndHessianMatchFiniteDifferences) {
 
 TEST_P(ReducedEnergy, RegionGradientAndHessianMatchFiniteDifferences) {
   for (Blend blend : {Blend::kAffine, Blend::kFree}) {
-    const meshik::BlendRegions regions = meshik::regions_from_examples(set_.impl(), 3, 0.7);
+    const meshik::BlendRegions regions = meshik::regions_from_examples(set_, 3, 0.7);
     ASSERT_EQ(regions.num_regions, 3);
     meshik::EvaluationBuffers buffers;
     meshik::PoseEvaluator evaluator(set_.impl(), system_, GetParam(), 0.5, problem_.targets.data(), buffers, 1, blend,
@@ -242,7 +242,7 @@ TEST(BlendRegions, OneRegionReproducesTodaysSolveBitForBit) {
   const meshik::ExampleSet set(meshes.view(), meshes.example_pointers());
   const HandleProblem problem = tube_problem(meshes, set.impl());
   const meshik::PoseSystem system(set.impl(), problem.internal_handles);
-  const meshik::BlendRegions one = meshik::regions_from_examples(set.impl(), 1, 1.0);
+  const meshik::BlendRegions one = meshik::regions_from_examples(set, 1, 1.0);
   ASSERT_EQ(one.num_regions, 1);
   for (Blend blend : {Blend::kAffine, Blend::kFree})
     for (int threads : {1, 2}) {
@@ -297,7 +297,7 @@ TEST(BlendRegions, VertexGroupsAndClustersArePartitionsOfUnityWithSoftBorders) {
   EXPECT_GT(soft, 0);  // borders are blended
   EXPECT_GT(by_groups.smoothness.norm(), 0.0);
   for (int count : {2, 4, meshik::kAutomaticRegions}) {
-    const meshik::BlendRegions clustered = meshik::regions_from_examples(set.impl(), count, 1.0);
+    const meshik::BlendRegions clustered = meshik::regions_from_examples(set, count, 1.0);
     if (count > 0) EXPECT_EQ(clustered.num_regions, count);
     EXPECT_GE(clustered.num_regions, 2);
     expect_partition_of_unity(clustered);
