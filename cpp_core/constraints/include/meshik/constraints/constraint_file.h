@@ -156,6 +156,9 @@ struct GroupPositions {
 // then use the format's defaults).
 struct WrittenSettings {
   std::optional<std::string> feature_space;       // "nonlinear" or "linear"
+  std::optional<std::string> blend;               // "affine" or "free"
+  std::optional<std::int64_t> regions;            // a region count >= 1, or -1 for "auto"
+  std::optional<double> region_smoothness;        // >= 0
   std::optional<double> weight_regularization;    // k >= 0
   std::optional<std::int64_t> max_iterations;     // >= 1
 };
