@@ -22,6 +22,14 @@ std::string document_text(const std::string& path, const std::string& rest, cons
                           const WrittenSettings& settings) {
   OrderedJson document = {{"format", "meshik-constraints"}, {"version", 1}, {"rest", rest}, {"examples", examples}};
   if (settings.feature_space) document["feature_space"] = *settings.feature_space;
+  if (settings.blend) document["blend"] = *settings.blend;
+  if (settings.regions) {
+    if (*settings.regions == -1)
+      document["regions"] = "auto";
+    else
+      document["regions"] = *settings.regions;
+  }
+  if (settings.region_smoothness) document["region_smoothness"] = *settings.region_smoothness;
   if (settings.weight_regularization) {
     if (!std::isfinite(*settings.weight_regularization))
       throw ConstraintError(path + ": weight_regularization: expected a finite number >= 0");
