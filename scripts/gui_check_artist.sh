@@ -34,11 +34,12 @@ artist_save_constraints() {
     fail "$artist: the constraint file $1 was not saved (see $meshlab_log)"
 }
 
-# Presses the keys $2... over the 3D view and waits for a log line matching $1 (prints it).
+# Presses the keys $2... with the mouse at $artist_cursor (default: an empty spot of the 3D view)
+# and waits for a log line matching $1 (prints it).
 artist_keys() {
   local pattern=$1
   shift
-  xdotool mousemove 560 520
+  xdotool mousemove ${artist_cursor:-560 520}
   sleep 0.2
   xdotool key "$@"
   wait_log "$pattern" 20 || { shot "${artist}_no_$(date +%s)"; fail "$artist: keys $* gave no log line \"$pattern\" (see $meshlab_log)"; }
@@ -94,7 +95,9 @@ drive_artist_features() {
   # Group 1: one handle at one end; group 2: two handles at the other end (ctrl+click beside).
   line=$(artist_click $p1 "" 1) || fail "$artist: clicking $p1 added no handle"
   read -r x y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
-  artist_click $p3 "" 2 >/dev/null || fail "$artist: clicking $p3 added no handle"
+  line=$(artist_click $p3 "" 2) || fail "$artist: clicking $p3 added no handle"
+  local second
+  second=$(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
   read -r px py <<<"$p3"
   for dx in 14 -14 24 -24 34; do
     artist_click $((px + dx)) "$py" ctrl 3 >/dev/null && break
@@ -120,8 +123,10 @@ drive_artist_features() {
   artist_save_pose "$out/${artist}_escape.ply" >/dev/null
   "${check[@]}" same "$out/${artist}_escape.ply" "$out/${artist}_drag.ply" || fail "$artist: Esc did not restore the pose"
 
-  # Turn group 2 by 30 degrees about the view axis (typed), saved as a "rotate" target.
+  # Turn group 2 (R over its handle) by 30 degrees about the view axis (typed), saved as a "rotate" target.
+  artist_cursor=$second
   artist_keys "MeshIK drag: turning group 2" r >/dev/null
+  artist_cursor=
   xdotool key 3 0
   sleep 0.5
   artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
@@ -136,7 +141,7 @@ drive_artist_features() {
 
   # Two keyframes: the turned pose, then 25 degrees more about Z; `meshik pose` replays them.
   artist_keys "MeshIK drag: frame 0001 added" f >/dev/null
-  artist_keys "MeshIK drag: turning group 2" r >/dev/null
+  artist_keys "MeshIK drag: turning group 2" r >/dev/null  # the last group turned
   xdotool key z 2 5
   sleep 0.5
   artist_keys "MeshIK drag: turn group 2 about Z" Return >/dev/null

@@ -52,7 +52,7 @@ void DragTool::log(const QString& text) {
 }
 
 bool DragTool::canResume(MeshDocument& document) const {
-  if (&document != document_ || rest_positions_.empty()) return false;
+  if (&document != document_.data() || rest_positions_.empty()) return false;
   const MeshModel* rest = restLayer();
   if (rest == nullptr || rest->cm.vert.size() * 3 != rest_positions_.size()) return false;
   // A layer switch or an import keeps the rest layer; another current layer with triangles
@@ -234,7 +234,7 @@ void DragTool::endEdit(MeshDocument&, GLArea*, MLSceneGLSharedDataContext*) { su
 void DragTool::endEdit(MeshModel&, GLArea*, MLSceneGLSharedDataContext*) { suspend(); }
 
 void DragTool::layerChanged(MeshDocument& document, MeshModel&, GLArea* area, MLSceneGLSharedDataContext*) {
-  if (&document == document_ && restLayer() != nullptr) {
+  if (&document == document_.data() && restLayer() != nullptr) {
     if (area) area->update();
     return;
   }

@@ -115,7 +115,8 @@ class DragTool : public QObject, public EditTool {
   void addMirrorPartner();
   void mirrorActiveGroup();
 
-  // Rotation: R starts it (about the group of the last handle grabbed or added).
+  // Rotation: R starts it (about the group of the handle under the cursor, else of the last one
+  // grabbed or added).
   void beginRotation();
   void updateRotation();
   void applyRotation();
@@ -127,7 +128,7 @@ class DragTool : public QObject, public EditTool {
   QString helpText() const;
 
   // The session: kept from startEdit to startEdit while canResume holds.
-  MeshDocument* document_ = nullptr;
+  QPointer<MeshDocument> document_;  // null once MeshLab deletes the document
   int rest_id_ = -1;
   std::vector<double> rest_positions_;  // #V by 3: the rest pose, for the tool's whole life
   std::vector<double> last_written_;    // #V by 3: the pose the tool last wrote into the layer

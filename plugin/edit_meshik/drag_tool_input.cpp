@@ -30,6 +30,12 @@ bool isHistoryKey(const QKeyEvent* event) {
   return (event->modifiers() & Qt::ControlModifier) && (event->key() == Qt::Key_Z || event->key() == Qt::Key_Y);
 }
 
+// Whether `key` (without modifiers) is one of the tool's command keys.
+bool isToolKey(int key) {
+  return key == Qt::Key_R || key == Qt::Key_S || key == Qt::Key_P || key == Qt::Key_F || key == Qt::Key_N ||
+         key == Qt::Key_M;
+}
+
 // Whether a mouse press means view navigation: the middle button, or the left one with Alt.
 bool isNavigationPress(const QMouseEvent* event) {
   return event->button() == Qt::MiddleButton ||
@@ -55,7 +61,8 @@ bool DragTool::eventFilter(QObject* watched, QEvent* event) {
   if (watched == area_ && event->type() == QEvent::ShortcutOverride) {
     const auto* key = static_cast<QKeyEvent*>(event);
     const bool busy = drag_ || rotation_;
-    if (isHistoryKey(key) || (busy && key->key() == Qt::Key_Escape) || (rotation_ && key->modifiers() == Qt::NoModifier)) {
+    if (isHistoryKey(key) || (busy && key->key() == Qt::Key_Escape) ||
+        (key->modifiers() == Qt::NoModifier && (rotation_ || isToolKey(key->key())))) {
       event->accept();  // the key goes to keyPressEvent, not to a MeshLab shortcut (Esc: "Not editing")
       return true;
     }
@@ -190,6 +197,8 @@ void DragTool::beginRotation() {
   finishPendingSolve();
   step_before_ = captureState();
   const auto [x, y] = cursorGlPosition();
+  const int hovered = pickHandle(*projection_, targets_, x, y, kHandleRadiusPixels);
+  if (hovered >= 0) active_group_ = groups_[hovered];  // R over a handle turns its group
   rotation_.emplace(*projection_, targets_, groupMembers(groups_, active_group_), x, y);
   typed_degrees_.clear();
   rotation_dragging_ = false;
