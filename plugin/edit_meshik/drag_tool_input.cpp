@@ -78,8 +78,8 @@ void DragTool::navigate(QEvent* event) {
     QApplication::sendEvent(area_, event);
   } else {
     auto* mouse = static_cast<QMouseEvent*>(event);
-    const Qt::MouseButton button = mouse->button() == Qt::LeftButton ? Qt::LeftButton : mouse->button();
-    QMouseEvent plain(mouse->type(), mouse->localPos(), mouse->windowPos(), mouse->screenPos(), button, mouse->buttons(),
+    QMouseEvent plain(mouse->type(), mouse->localPos(), mouse->windowPos(), mouse->screenPos(), mouse->button(),
+                      mouse->buttons(),
                       mouse->modifiers() & ~Qt::AltModifier);  // alt+left turns the view like a plain left drag
     QApplication::sendEvent(area_, &plain);
   }
