@@ -217,6 +217,9 @@ void DragTool::suspend() {
   if (navigating_ && area_) area_->suspendedEditor = false;
   navigating_ = false;
   pending_click_.reset();
+  pending_rectangle_.reset();
+  pressed_.reset();
+  rectangle_.reset();
   projection_.reset();
   example_set_.reset();
   latency_.clear();

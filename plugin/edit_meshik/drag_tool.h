@@ -78,6 +78,10 @@ class DragTool : public QObject, public EditTool {
     bool remove;     // shift+click
     bool add_to_group;  // ctrl+click
   };
+  // A rectangle drawn from an empty spot: its visible vertices become one new group.
+  struct Rectangle {
+    double x0, y0, x1, y1;  // GL window pixels: the press and the cursor now
+  };
 
   // Ends the interactive part (dock, worker, drag, event filter); the session stays.
   void suspend();
@@ -96,6 +100,10 @@ class DragTool : public QObject, public EditTool {
   void postSolve(bool quick, Clock::time_point event_time);
   void applyOutcome(const SolveOutcome& outcome);
   void handleClick(const Click& click, MeshModel& layer);
+  // In decorate (the depth buffer is the frame's): the visible vertices in the rectangle as a new group.
+  void handleRectangle(const Rectangle& rectangle);
+  // The rectangle being drawn, in window pixels, as lines over the view.
+  void drawRectangle(const Rectangle& rectangle) const;
   void finishPendingSolve();
   // Solves the current targets to convergence and waits for the pose (the end of a drag or turn).
   void convergeNow();
@@ -150,7 +158,10 @@ class DragTool : public QObject, public EditTool {
   std::unique_ptr<SolveWorker> worker_;
   std::optional<std::vector<double>> next_start_weights_;  // the next solve's warm start (after undo, reset)
   std::optional<ScreenProjection> projection_;  // the view of the last frame drawn
+  std::optional<Click> pressed_;  // a press on no handle: a click, or the start of a rectangle
+  std::optional<Rectangle> rectangle_;  // being drawn (the mouse moved 5 pixels or more)
   std::optional<Click> pending_click_;
+  std::optional<Rectangle> pending_rectangle_;
   std::optional<ViewPlaneDrag> drag_;
   std::optional<GroupRotation> rotation_;
   QString typed_degrees_;     // digits typed during a turn

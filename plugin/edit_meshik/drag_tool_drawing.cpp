@@ -32,7 +32,7 @@ QString DragTool::helpText() const {
   }
   if (drag_) return QStringLiteral("<b>Moving group %1</b><br>release to apply, Esc cancels").arg(active_group_);
   return QStringLiteral("<b>Posing</b> (%1 handles, %2 undo steps, %3 frames)<br>click: handle (new group), ctrl+click: "
-                        "add to the group, shift+click: remove<br>drag a handle: move its group; R: turn it"
+                        "add to the group, shift+click: remove, drag on the mesh: a group of the rectangle<br>drag a handle: move its group; R: turn it"
                         "<br>Ctrl+Z undo, Ctrl+Shift+Z / Ctrl+Y redo; F add frame; M mirror; S save constraints, P save pose"
                         "<br>middle or Alt drag, wheel: view")
       .arg(handles_.size())
@@ -56,6 +56,11 @@ void DragTool::decorate(MeshModel&, GLArea* area, QPainter*) {
     const Click click = *pending_click_;
     pending_click_.reset();
     handleClick(click, *rest);
+  }
+  if (pending_rectangle_) {
+    const Rectangle rectangle = *pending_rectangle_;
+    pending_rectangle_.reset();
+    handleRectangle(rectangle);
   }
   glPushAttrib(GL_ENABLE_BIT | GL_POINT_BIT | GL_CURRENT_BIT | GL_POLYGON_BIT);
   glDisable(GL_LIGHTING);
@@ -88,8 +93,32 @@ void DragTool::decorate(MeshModel&, GLArea* area, QPainter*) {
     glVertex3d(rotation_->centre()[0], rotation_->centre()[1], rotation_->centre()[2]);
   }
   glEnd();
+  if (rectangle_) drawRectangle(*rectangle_);
   glPopAttrib();
   glPopMatrix();
+}
+
+void DragTool::drawRectangle(const Rectangle& rectangle) const {
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glMatrixMode(GL_PROJECTION);
+  glPushMatrix();
+  glLoadIdentity();
+  glOrtho(viewport[0], viewport[0] + viewport[2], viewport[1], viewport[1] + viewport[3], -1.0, 1.0);
+  glMatrixMode(GL_MODELVIEW);
+  glPushMatrix();
+  glLoadIdentity();
+  glColor3f(1.0f, 1.0f, 1.0f);
+  glBegin(GL_LINE_LOOP);
+  glVertex2d(rectangle.x0, rectangle.y0);
+  glVertex2d(rectangle.x1, rectangle.y0);
+  glVertex2d(rectangle.x1, rectangle.y1);
+  glVertex2d(rectangle.x0, rectangle.y1);
+  glEnd();
+  glPopMatrix();
+  glMatrixMode(GL_PROJECTION);
+  glPopMatrix();
+  glMatrixMode(GL_MODELVIEW);
 }
 
 }  // namespace meshik::edit

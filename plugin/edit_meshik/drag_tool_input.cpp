@@ -1,10 +1,12 @@
-// The tool's mouse and keys: clicks add or remove handles, a drag moves a group, R turns one
+// The tool's mouse and keys: clicks add or remove handles, a rectangle drawn from an empty spot
+// makes a group of the visible vertices inside it, a drag moves a group, R turns one
 // (X/Y/Z lock the axis, typed degrees, Return applies, Backspace or Esc cancels, as in MeshLab's
 // edit_manipulators), Esc cancels a drag, Ctrl+Z / Ctrl+Shift+Z / Ctrl+Y step through the
 // history, a middle or alt drag and the wheel move the view (MeshLab's own trackball).
 #include "drag_tool.h"
 
 #include "../layer_arrays.h"
+#include "bounding_box.h"
 #include "pose_step.h"
 #include "vertex_picking.h"
 
@@ -123,8 +125,7 @@ void DragTool::mousePressEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
       return;
     }
   }
-  pending_click_ = Click{x, y, remove, static_cast<bool>(event->modifiers() & Qt::ControlModifier)};
-  area->update();
+  pressed_ = Click{x, y, remove, static_cast<bool>(event->modifiers() & Qt::ControlModifier)};
 }
 
 void DragTool::mouseMoveEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
@@ -139,6 +140,10 @@ void DragTool::mouseMoveEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
   } else if (drag_) {
     targets_ = drag_->targetsAt(x, y);
   } else {
+    if (pressed_ && (rectangle_ || std::hypot(x - pressed_->x, y - pressed_->y) >= 5.0)) {
+      rectangle_ = Rectangle{pressed_->x, pressed_->y, x, y};
+      area->update();
+    }
     return;
   }
   mirrorActiveGroup();
@@ -154,6 +159,14 @@ void DragTool::mouseReleaseEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
   }
   if (rotation_ && rotation_dragging_) {
     applyRotation();
+    return;
+  }
+  if (pressed_) {  // a click, or the end of a rectangle: handled in decorate, where the depth buffer is
+    if (rectangle_) pending_rectangle_ = rectangle_;
+    else pending_click_ = pressed_;
+    pressed_.reset();
+    rectangle_.reset();
+    area->update();
     return;
   }
   if (!drag_ || !worker_) return;
@@ -350,6 +363,42 @@ void DragTool::handleClick(const Click& click, MeshModel& layer) {
   // move solves with the new handle set (and refactors then).
   history_.push(new PoseStep(this, click.remove ? QStringLiteral("remove a handle") : QStringLiteral("add a handle"),
                              before, captureState()));
+}
+
+void DragTool::handleRectangle(const Rectangle& rectangle) {
+  const int left = static_cast<int>(std::floor(std::min(rectangle.x0, rectangle.x1)));
+  const int bottom = static_cast<int>(std::floor(std::min(rectangle.y0, rectangle.y1)));
+  const int width = static_cast<int>(std::ceil(std::abs(rectangle.x1 - rectangle.x0))) + 1;
+  const int height = static_cast<int>(std::ceil(std::abs(rectangle.y1 - rectangle.y0))) + 1;
+  std::vector<float> depths(static_cast<size_t>(width) * height, 1.0f);
+  glReadPixels(left, bottom, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  const auto depth_at = [&](int x, int y) -> double {
+    if (x < left || y < bottom || x >= left + width || y >= bottom + height) return 1.0;
+    return depths[static_cast<size_t>(y - bottom) * width + (x - left)];
+  };
+  const double tolerance = 0.01 * boundingBox(last_written_.data(), last_written_.size() / 3).diagonal();
+  const std::vector<int> inside = pickVerticesInRectangle(*projection_, last_written_, rectangle.x0, rectangle.y0,
+                                                          rectangle.x1, rectangle.y1, depth_at, tolerance);
+  const std::shared_ptr<const PoseState> before = captureState();
+  const int group = newGroupNumber(groups_);
+  int added = 0;
+  for (int v : inside) {
+    if (std::find(handles_.begin(), handles_.end(), v) != handles_.end()) continue;
+    handles_.push_back(v);
+    groups_.push_back(group);
+    mirrors_.push_back(-1);
+    targets_.insert(targets_.end(), &last_written_[3 * v], &last_written_[3 * v] + 3);
+    ++added;
+  }
+  if (added == 0) {
+    log(QStringLiteral("the rectangle holds no visible vertex that is not a handle yet"));
+    return;
+  }
+  active_group_ = group;
+  showHandleCount();
+  history_.push(new PoseStep(this, QStringLiteral("add group %1 (%2 handles)").arg(group).arg(added), before,
+                             captureState()));
+  log(QStringLiteral("%1 handles, group %2 of %3 from a rectangle").arg(handles_.size()).arg(group).arg(added));
 }
 
 }  // namespace meshik::edit

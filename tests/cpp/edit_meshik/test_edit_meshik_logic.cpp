@@ -84,6 +84,22 @@ TEST(VertexPicking, PicksTheHandleMarkerNearestTheClick) {
   EXPECT_EQ(meshik::edit::pickHandle(view, handles, third.x, third.y + 20, 8.0), -1);
 }
 
+// Three vertices inside a rectangle, one hidden behind the front one (the depth buffer shows the
+// front surface there), one outside: the rectangle takes the visible ones inside it.
+TEST(VertexPicking, ARectangleTakesTheVisibleVerticesInsideIt) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> vertices = {0, 0, 1, 0, 0, -1, 0.3, 0.2, 0, 3, 0, 0};
+  const WindowPoint front = view.project(&vertices[0]), side = view.project(&vertices[6]);
+  // The depth buffer: the front vertex's depth around it, the side vertex's depth elsewhere.
+  const auto depth = [&](int x, int y) {
+    return std::abs(x - front.x) < 3 && std::abs(y - front.y) < 3 ? front.depth : side.depth;
+  };
+  const std::vector<int> picked = meshik::edit::pickVerticesInRectangle(view, vertices, front.x - 20, front.y - 20,
+                                                                        side.x + 20, side.y + 20, depth, 0.05);
+  EXPECT_EQ(picked, (std::vector<int>{0, 2}));
+  EXPECT_TRUE(meshik::edit::pickVerticesInRectangle(view, vertices, 0, 0, 5, 5, depth, 0.05).empty());
+}
+
 TEST(ViewPlaneDrag, TheGrabbedTargetFollowsTheCursorAtItsDepthAndTheGroupMovesAlong) {
   const ScreenProjection view = cameraOnZAxis();
   const std::vector<double> targets = {0.5, 0.2, 1.0, -1, 0, 0, 0, 1, -2};
