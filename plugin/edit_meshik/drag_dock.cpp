@@ -50,32 +50,31 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   help->setWordWrap(true);
   layout->addWidget(help);
 
-  // The commands first, in a grid that nothing below can shift.
+  // The commands first, in a grid (two per row) that nothing below can shift.
+  struct Command {
+    QString text, tip;
+    void (DragDock::*signal)();
+  };
+  const Command kCommands[] = {
+      {tr("Save constraints..."),
+       tr("The handle groups and the frames (or the targets now, as one frame) as a meshik-constraints file (S)"),
+       &DragDock::saveConstraintFile},
+      {tr("Save pose..."), tr("Save the posed layer to a mesh file (P)"), &DragDock::savePose},
+      {tr("Add frame"), tr("Append the targets now as the next frame (F)"), &DragDock::addKeyframe},
+      {tr("Clear frames"), tr("Forget the frames added so far"), &DragDock::clearKeyframes},
+      {tr("Pose into a new layer"), tr("Copy the current pose into a new layer \"MeshIK pose of ...\" (N)"),
+       &DragDock::poseToNewLayer},
+      {tr("Clear handles"), tr("Remove every handle (undo: Ctrl+Z)"), &DragDock::clearHandles},
+      {QString(), QString(), nullptr},  // an empty cell: Reset sits apart from the other commands
+      {tr("Reset pose"), tr("Handles and mesh back to the rest pose (undo: Ctrl+Z)"), &DragDock::resetPose},
+  };
   auto* commands = new QGridLayout();
-  commands->addWidget(commandButton(this, tr("Save constraints..."),
-                                    tr("The handle groups and the frames (or the targets now, as one frame) as a "
-                                       "meshik-constraints file (S)"),
-                                    &DragDock::saveConstraintFile),
-                      0, 0);
-  commands->addWidget(commandButton(this, tr("Save pose..."), tr("Save the posed layer to a mesh file (P)"),
-                                    &DragDock::savePose),
-                      0, 1);
-  commands->addWidget(commandButton(this, tr("Add frame"), tr("Append the targets now as the next frame (F)"),
-                                    &DragDock::addKeyframe),
-                      1, 0);
-  commands->addWidget(commandButton(this, tr("Clear frames"), tr("Forget the frames added so far"),
-                                    &DragDock::clearKeyframes),
-                      1, 1);
-  commands->addWidget(commandButton(this, tr("Pose into a new layer"),
-                                    tr("Copy the current pose into a new layer \"MeshIK pose of ...\" (N)"),
-                                    &DragDock::poseToNewLayer),
-                      2, 0);
-  commands->addWidget(commandButton(this, tr("Clear handles"), tr("Remove every handle (undo: Ctrl+Z)"),
-                                    &DragDock::clearHandles),
-                      2, 1);
-  commands->addWidget(commandButton(this, tr("Reset pose"), tr("Handles and mesh back to the rest pose (undo: Ctrl+Z)"),
-                                    &DragDock::resetPose),
-                      3, 1);
+  int cell = 0;
+  for (const Command& command : kCommands) {
+    if (command.signal)
+      commands->addWidget(commandButton(this, command.text, command.tip, command.signal), cell / 2, cell % 2);
+    ++cell;
+  }
   layout->addLayout(commands);
 
   layout->addWidget(new QLabel(tr("Example layers"), this));
@@ -182,7 +181,9 @@ void DragDock::showPose(const std::vector<double>& weights, int iterations, doub
                       .arg(inverted_triangles));
 }
 
-void DragDock::showHandles(int count, int groups) { handles_->setText(tr("%1 handles in %2 groups").arg(count).arg(groups)); }
+void DragDock::showHandles(int count, int groups) {
+  handles_->setText(tr("%1 handles in %2 groups").arg(count).arg(groups));
+}
 
 void DragDock::showKeyframes(int count) { keyframes_->setText(tr("%1 frames").arg(count)); }
 

@@ -31,10 +31,12 @@ QString DragTool::helpText() const {
         .arg(typed_degrees_.isEmpty() ? QString() : QStringLiteral(": %1 degrees").arg(typed_degrees_));
   }
   if (drag_) return QStringLiteral("<b>Moving group %1</b><br>release to apply, Esc cancels").arg(active_group_);
-  return QStringLiteral("<b>Posing</b> (%1 handles, %2 undo steps, %3 frames)<br>click: handle (new group), ctrl+click: "
-                        "add to the group, shift+click: remove, drag on the mesh: a group of the rectangle<br>drag a handle: move its group; R: turn it"
-                        "<br>Ctrl+Z undo, Ctrl+Shift+Z / Ctrl+Y redo; F add frame; M mirror; S save constraints, P save pose"
-                        "<br>middle or Alt drag, wheel: view")
+  return QStringLiteral(
+             "<b>Posing</b> (%1 handles, %2 undo steps, %3 frames)"
+             "<br>click: handle (new group), ctrl+click: add to the group, shift+click: remove"
+             "<br>drag from an empty spot: a group of the rectangle; drag a handle: move its group; R: turn it"
+             "<br>Ctrl+Z undo, Ctrl+Shift+Z / Ctrl+Y redo; F add frame; M mirror; S save constraints, P save pose"
+             "<br>middle or Alt drag, wheel: view")
       .arg(handles_.size())
       .arg(history_.index())
       .arg(keyframes_.count());

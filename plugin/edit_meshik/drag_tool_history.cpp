@@ -45,13 +45,17 @@ void DragTool::restoreState(const PoseState& state, const QString& what) {
   plugin::setVertexPositions(*rest, state.vertices);
   last_written_ = state.vertices;
   refreshBuffers(*rest);
-  if (panel_) panel_->showPose(last_weights_, 0, 0.0, 0);
+  if (panel_) {
+    panel_->showError(QString());
+    panel_->showPose(last_weights_, 0, 0.0, 0);
+  }
   showHandleCount();
   log(QStringLiteral("%1: %2 handles, the pose of that step").arg(what).arg(handles_.size()));
 }
 
 void DragTool::showHandleCount() {
-  if (panel_) panel_->showHandles(static_cast<int>(handles_.size()), static_cast<int>(std::set<int>(groups_.begin(), groups_.end()).size()));
+  const std::set<int> groups(groups_.begin(), groups_.end());
+  if (panel_) panel_->showHandles(static_cast<int>(handles_.size()), static_cast<int>(groups.size()));
   if (area_) area_->update();
 }
 

@@ -55,7 +55,8 @@ constraints::GroupTarget groupTarget(const DragGroup& group, const std::vector<d
 void writeConstraintFrames(const std::string& path, const DragFrames& frames, const double* rest_vertices,
                            int num_vertices) {
   checkContent(path, frames, rest_vertices ? num_vertices : -1);
-  const double tolerance = rest_vertices ? 1e-9 * boundingBox(rest_vertices, static_cast<size_t>(num_vertices)).diagonal() : 0.0;
+  const double tolerance =
+      rest_vertices ? 1e-9 * boundingBox(rest_vertices, static_cast<size_t>(num_vertices)).diagonal() : 0.0;
   std::vector<constraints::HandleGroup> groups;
   for (const DragGroup& group : frames.groups)
     groups.push_back({group.name, std::vector<std::int64_t>(group.vertices.begin(), group.vertices.end()),
