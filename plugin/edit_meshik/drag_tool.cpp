@@ -23,7 +23,9 @@ double millisecondsSince(Clock::time_point start) {
 
 }  // namespace
 
-DragTool::DragTool() { history_.setUndoLimit(200); }
+DragTool::DragTool() {
+  history_.setUndoLimit(100);  // each step holds a pose: about 1 MB on the elephant
+}
 
 DragTool::~DragTool() {
   suspend();
