@@ -173,4 +173,14 @@ void write_constraint_file(const std::string& path, const std::string& rest, con
                            const std::vector<GroupPositions>& groups, const std::string& frame_name = "0001",
                            const WrittenSettings& settings = {});
 
+// Writes a constraint file with any number of frames: "rest" and "examples" as given, the members
+// of `settings` that are set, the handle groups (vertex lists, in order) and the frames in order.
+// A frame's target is written as its position list, or for a rigid one as
+// {"rotate": {"axis", "degrees", "center"}, "translate"} ("rotate" left out for the identity,
+// "center" for an unset centre). Checked and written like write_constraint_file; ConstraintError
+// names `path` and the group or frame at fault.
+void write_constraint_frames(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
+                             const std::vector<HandleGroup>& groups, const std::vector<Frame>& frames,
+                             const WrittenSettings& settings = {});
+
 }  // namespace meshik::constraints
