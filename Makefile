@@ -47,8 +47,10 @@ test-portable: setup $(BUILD_PORTABLE)/build.ninja
 	cmake --build $(BUILD_PORTABLE) -j $(JOBS)
 	ctest --test-dir $(BUILD_PORTABLE) --output-on-failure -j $(JOBS)
 
+# The Blender reader test needs bpy in its own venv (about 1 GB): installed here, not by `make demo`.
 # The wheel is built first: tests/python/test_wheel_install.py installs it into a brand-new venv.
 test-python: build wheel
+	@scripts/setup.sh blender
 	MESHIK_WHEEL_REQUIRED=1 $(PY) -m pytest -q tests/python
 
 test: test-cpp test-asan test-portable test-python

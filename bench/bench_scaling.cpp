@@ -1,7 +1,8 @@
 // Scaling of MeshIK with mesh size: the horse (--data, ../shared/data/horse-poses, 4 examples,
 // targets from the held-out pose 5 at 16 farthest-point handles) midpoint-subdivided 1, 2 and 3
-// times (about 67k, 270k and 1.08M triangles), on one thread and on all cores. Per size and
-// thread count, in a fresh child process each (so that its peak memory is its own):
+// times (about 67k, 270k and 1.08M triangles), on one thread and on all cores (the ExampleSet, the
+// Solver and its poses alike). Per size and thread count, in a fresh child process each (so that
+// its peak memory is its own):
 //   ExampleSet  the precompute (its phases on the next line),
 //   Solver      building the solver for the handle set (assembly, numeric factorization on the
 //               pattern the ExampleSet analysed, the linear start),
@@ -19,8 +20,6 @@
 // the fastest library's factor time (analysis + numeric) is the comparison for Solver.
 //
 // Usage: bench_scaling [--data DIR] [--levels N] [--first-level N] [--reps N] [--precision single|double]
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,57 +30,27 @@
 #include <string>
 #include <vector>
 
+#include "child_process.h"
 #include "example_set_impl.h"
 #include "library_cholesky.h"
 #include "meshik/meshik.h"
-#include "midpoint_subdivision.h"
 #include "normal_matrix.h"
-#include "obj_reader.h"
 #include "paper_handles.h"
+#include "pose_set.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using meshik_bench::PoseSet;
+using meshik_bench::current_rss_mb;
+using meshik_bench::in_child;
+using meshik_bench::peak_rss_mb;
+using meshik_bench::subdivided;
 
 constexpr int kHandles = 16;
 
-// The horse's rest mesh, its 4 examples and the held-out pose, subdivided together.
-struct PoseSet {
-  meshik_bench::TriangleMesh rest;
-  std::vector<std::vector<double>> examples;
-  std::vector<double> held_out;
-};
-
-PoseSet subdivided(const PoseSet& base, int levels) {
-  PoseSet set = base;
-  for (int level = 0; level < levels; ++level) {
-    const meshik_bench::MidpointStep step = meshik_bench::midpoint_step(set.rest.triangles, set.rest.num_vertices());
-    set.rest.vertices = meshik_bench::subdivided_positions(set.rest.vertices, step);
-    set.rest.triangles = step.new_triangles;
-    for (auto& e : set.examples) e = meshik_bench::subdivided_positions(e, step);
-    set.held_out = meshik_bench::subdivided_positions(set.held_out, step);
-  }
-  return set;
-}
-
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
-}
-
-// The resident memory now (MB; Linux: the second field of /proc/self/statm, in pages), or -1.
-double current_rss_mb() {
-  std::FILE* statm = std::fopen("/proc/self/statm", "r");
-  if (statm == nullptr) return -1.0;
-  long size = 0, resident = -1;
-  const bool read = std::fscanf(statm, "%ld %ld", &size, &resident) == 2;
-  std::fclose(statm);
-  return read ? resident * (sysconf(_SC_PAGESIZE) / 1048576.0) : -1.0;
 }
 
 template <typename T>
@@ -136,8 +105,10 @@ Measurement measure(const PoseSet& base, int levels, int threads, int reps, mesh
   out.feature_bytes_per_triangle_example = per_example / (out.triangles * static_cast<double>(pointers.size()));
   const std::vector<int> handles = meshik_bench::farthest_point_handles(set.rest.vertices, kHandles);
   const std::vector<double> targets = meshik_bench::gather_rows(set.held_out, handles);
+  meshik::SolverOptions options;
+  options.threads = threads;  // the Solver and its poses on the row's threads too
   start = std::chrono::steady_clock::now();
-  const meshik::Solver solver(examples, handles);
+  const meshik::Solver solver(examples, handles, options);
   out.solver_ms = ms_since(start);
   std::vector<double> poses, intervals;
   for (int r = 0; r < reps; ++r) {
@@ -185,30 +156,6 @@ FactorComparison compare_factor(const PoseSet& base, int levels) {
   return out;
 }
 
-// Runs work in a child process and returns the bytes it wrote (a T), so that every measurement
-// has a fresh heap, thread pool and peak-memory count. The parent never starts OpenMP.
-template <typename T, typename Work>
-bool in_child(const Work& work, T& result) {
-  int channel[2];
-  if (pipe(channel) != 0) return false;
-  const pid_t child = fork();
-  if (child == 0) {
-    close(channel[0]);
-    const T value = work();
-    const ssize_t sent = write(channel[1], &value, sizeof value);
-    _exit(sent == static_cast<ssize_t>(sizeof value) ? 0 : 1);
-  }
-  close(channel[1]);
-  size_t got = 0;
-  for (ssize_t n; got < sizeof result && (n = read(channel[0], reinterpret_cast<char*>(&result) + got,
-                                                     sizeof result - got)) > 0;)
-    got += static_cast<size_t>(n);
-  close(channel[0]);
-  int status = 0;
-  waitpid(child, &status, 0);
-  return got == sizeof result && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -226,15 +173,11 @@ int main(int argc, char** argv) {
     else if (key != "--samples") std::fprintf(stderr, "ignoring unknown option %s\n", key.c_str());
   }
   const fs::path folder = fs::path(data) / "horse-poses";
-  if (!fs::exists(folder / "reference.obj")) {
+  const PoseSet base = meshik_bench::read_pose_set(folder);
+  if (base.rest.num_vertices() == 0) {
     std::printf("(skipping: %s not found)\n", (folder / "reference.obj").c_str());
     return 0;
   }
-  PoseSet base;
-  base.rest = meshik_bench::read_obj((folder / "reference.obj").string());
-  for (int k = 1; k <= 4; ++k)
-    base.examples.push_back(meshik_bench::read_obj((folder / (std::to_string(k) + ".obj")).string()).vertices);
-  base.held_out = meshik_bench::read_obj((folder / "5.obj").string()).vertices;
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
   std::printf("Horse midpoint-subdivided, 4 examples, %d handles, targets from pose 5; %ld cores; times in ms,\n"
               "pose: median of %d solves; Lib factor: fastest of CHOLMOD simplicial/supernodal and Eigen\n"

@@ -1,7 +1,7 @@
 // MeshIK's sparse Cholesky and the libraries the benchmarks compare it with, on one matrix:
 // CHOLMOD (simplicial and supernodal) and Eigen's SimplicialLDLT (AMD), each timed per phase
-// (analysis, numeric factorization, a solve with the given right-hand sides). Shared by bench_cholesky and
-// bench_scaling; the product never links these libraries.
+// (analysis, numeric factorization, a solve with the given right-hand sides). Shared by bench_cholesky,
+// bench_scaling and bench_thread_scaling; the product never links these libraries.
 #pragma once
 
 #include <cholmod.h>
@@ -11,6 +11,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -144,6 +145,23 @@ inline std::vector<Result>::const_iterator fastest_factor(const std::vector<Resu
   return std::min_element(results.begin(), results.end(), [](const Result& x, const Result& y) {
     return x.analyze_ms + x.numeric_ms < y.analyze_ms + y.numeric_ms;
   });
+}
+
+// The fastest library's factorization of the lower triangle `a` (analysis + numeric, one thread,
+// medians of `reps` runs): its time and name (a plain struct, so a child process can send it).
+struct LibraryFactor {
+  double ms = 0;
+  char name[64] = {};
+};
+inline LibraryFactor fastest_library_factor(const CscMatrix& a, int reps) {
+  const Eigen::SparseMatrix<double> full = full_matrix(a);
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(a.rows, 15);
+  const std::vector<Result> theirs = bench_libraries(a, b, full, reps);
+  const auto fastest = fastest_factor(theirs);
+  LibraryFactor out;
+  out.ms = fastest->analyze_ms + fastest->numeric_ms;
+  std::snprintf(out.name, sizeof out.name, "%s", fastest->name.c_str());
+  return out;
 }
 
 }  // namespace meshik_bench

@@ -2,6 +2,7 @@
 
 #include "handle_targets.h"
 #include "progress.h"
+#include "meshik/thread_limit.h"
 
 #include <common/mlexception.h>
 #include <common/parameters/rich_parameters.h>
@@ -53,7 +54,10 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   options.weight_regularization = parameters.getFloat("weightregularization");
   options.threads = parameters.getInt("threads");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
-  if (options.threads < 0) throw MLException("threads: expected 0 (all cores) or a count of at least 1");
+  if (options.threads < 0 || options.threads > kMaxThreads)
+    throw MLException(QString("threads: expected 0 (all cores) or a count from 1 to %1, got %2")
+                          .arg(kMaxThreads)
+                          .arg(options.threads));
   if (!(options.weight_regularization >= 0.0))
     throw MLException("weightregularization: expected a number >= 0");
 

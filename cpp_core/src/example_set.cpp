@@ -4,10 +4,12 @@
 #include <future>
 #include <numeric>
 
+#include "analysis_cache.h"
 #include "example_set_impl.h"
 #include "gradient_operator.h"
 #include "input_validation.h"
 #include "locality_order.h"
+#include "meshik/thread_limit.h"
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
@@ -101,26 +103,32 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     example_pointers.push_back(internal_examples.back().data());
   }
   clock.lap("locality order");
-  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                     std::to_string(threads));
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
   int system_rows = 0;
   for (int v = 0; v < rest.num_vertices; ++v)
     if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
-  const CscMatrix pattern =
-      eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
-  // The analysis (ordering and symbolic factorization: serial, about 0.6 s at 1M triangles) needs
-  // the pattern only: with more than one thread it runs on its own beside the frames and the
-  // features. It writes system_analysis alone, and is waited for below (or, should anything throw
-  // first, by the future's destructor, before `pattern` goes).
+  // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the pattern
+  // and an analysis of it (ordering and symbolic factorization: serial, about 0.6 s at 1M
+  // triangles). The analysis needs the pattern only: with more than one thread it runs on its own
+  // beside the frames and the features. It writes system_analysis alone, and is waited for below
+  // (or, should anything throw first, by the future's destructor, before `built_pattern` goes).
+  const bool cached = share_cached_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
+  CscMatrix built_pattern;
+  if (!cached)
+    built_pattern = eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
+  const CscMatrix& pattern = cached ? impl.system_analysis.analyzed_pattern() : built_pattern;
   const auto analyze = [&impl, &pattern] {
     if (pattern.rows > 0) impl.system_analysis.analyze(pattern);
   };
   std::future<void> analysis;
-  if (thread_count(threads) > 1) analysis = std::async(std::launch::async, analyze);
+  if (!cached && thread_count(threads) > 1) analysis = std::async(std::launch::async, analyze);
   clock.lap("system pattern");
-  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles);
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, thread_count(threads));
   TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   clock.lap("topology and frames");
   compute_centroids(impl, example_pointers);
@@ -141,9 +149,10 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap("normal matrix");
   if (analysis.valid())
     analysis.get();
-  else
+  else if (!cached)
     analyze();
-  clock.lap("analysis");  // with more than one thread: the wait for it
+  if (!cached) cache_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
+  clock.lap(cached ? "analysis (cached)" : "analysis");  // with more than one thread: the wait for it
 }
 
 ExampleSet::~ExampleSet() = default;

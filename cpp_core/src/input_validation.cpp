@@ -1,6 +1,8 @@
 // Input checks with messages that name the offending vertex, triangle, example or handle.
 #include "input_validation.h"
 
+#include "meshik/thread_limit.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -115,8 +117,9 @@ void validate_options(const SolverOptions& options) {
   if (!(std::isfinite(options.tolerance) && options.tolerance >= 0.0))
     throw InputError("tolerance must be finite and >= 0, got " +
                      std::to_string(options.tolerance));
-  if (options.threads < 0)
-    throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(options.threads));
+  if (options.threads < 0 || options.threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                     std::to_string(options.threads));
   if (options.max_iterations < 0)
     throw InputError("max_iterations must be >= 0, got " +
                      std::to_string(options.max_iterations));

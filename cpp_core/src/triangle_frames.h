@@ -27,8 +27,9 @@ struct TriangleFrames {
   std::vector<double> frame_inverse;
 };
 
-// rest: #V by 3 positions; triangles: #F by 3 indices of non-degenerate triangles.
-TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles);
+// rest: #V by 3 positions; triangles: #F by 3 indices of non-degenerate triangles. team: threads
+// (1: serial), over batches of triangles; each triangle's frame is the same bits for any team.
+TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles, int team = 1);
 
 // (e1 x e2) / sqrt(|e1 x e2|): the fourth vertex minus the first; zero for a degenerate triangle.
 Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2);

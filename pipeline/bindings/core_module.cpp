@@ -16,6 +16,7 @@
 
 #include "decimate_module.h"
 #include "meshik/meshik.h"
+#include "meshik/thread_limit.h"
 #include "owned_array.h"
 
 namespace nb = nanobind;
@@ -181,13 +182,16 @@ struct PySolver {
 // with the GIL released while the core validates and precomputes.
 // threads: None (all cores) or a count from 1 to kMaxThreads, as the core's ExampleSet takes it
 // (0 = all cores). feature_precision: "single" or "double" (parse_feature_precision).
-constexpr long kMaxThreads = 4096;
+// Anything else (a float, a bool, an integer beyond 64 bits, a string) is an InputError naming it.
 int thread_option(const nb::object& threads) {
   if (threads.is_none()) return 0;
-  const long count = nb::cast<long>(threads);
-  if (count < 1 || count > kMaxThreads)
-    throw meshik::InputError("threads must be None (all cores) or a count from 1 to " + std::to_string(kMaxThreads) +
-                             ", got " + std::to_string(count));
+  const std::string expected = "threads must be None (all cores) or an integer from 1 to " + std::to_string(meshik::kMaxThreads);
+  if (!PyLong_Check(threads.ptr()) || PyBool_Check(threads.ptr()))
+    throw meshik::InputError(expected + ", got " + nb::cast<std::string>(nb::repr(threads)));
+  int overflow = 0;
+  const long long count = PyLong_AsLongLongAndOverflow(threads.ptr(), &overflow);
+  if (overflow != 0 || count < 1 || count > meshik::kMaxThreads)
+    throw meshik::InputError(expected + ", got " + nb::cast<std::string>(nb::repr(threads)));
   return static_cast<int>(count);
 }
 
@@ -302,7 +306,7 @@ NB_MODULE(_core, m) {
   m.doc() = "MeshIK core: pose a mesh from handles within the space of example poses.";
   nb::exception<meshik::InputError>(m, "InputError", PyExc_ValueError);
   nb::exception<meshik::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
-  m.attr("MAX_THREADS") = kMaxThreads;
+  m.attr("MAX_THREADS") = meshik::kMaxThreads;
   bind_decimate(m);
 
   nb::class_<PyExampleSet>(m, "ExampleSet",

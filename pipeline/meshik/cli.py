@@ -45,10 +45,16 @@ def main(argv: Optional[List[str]] = None) -> int:
 
 
 def _print_error(message: str) -> None:
-    """Print `meshik: error: message` on one line of stderr; file names that are not valid UTF-8
-    are shown with backslash escapes rather than failing to print."""
-    line = f"meshik: error: {message}".encode("utf-8", "backslashreplace").decode("utf-8")
-    print(line, file=sys.stderr)
+    """Print `meshik: error: message` on one line of stderr; control characters and file names
+    that are not valid UTF-8 are shown as backslash escapes (meshik.terminal_text)."""
+    _print_line(f"meshik: error: {message}", sys.stderr)
+
+
+def _print_line(text: str, stream) -> None:
+    """Print `text` as one inert line on `stream` (control characters escaped: one_line)."""
+    from meshik.terminal_text import one_line
+
+    print(one_line(text), file=stream, flush=True)
 
 
 def _stop_on_sigterm():
@@ -65,9 +71,19 @@ def _stop_on_sigterm():
     return signal.signal(signal.SIGTERM, interrupt)
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """An ArgumentParser whose usage errors are one line on stderr (escaped as every error line),
+    naming the command and pointing at its --help, with exit status 2."""
+
+    def error(self, message: str):
+        """Print `<prog>: error: message (see <prog> --help)` and exit with status 2."""
+        _print_line(f"{self.prog}: error: {message} (see {self.prog} --help)", sys.stderr)
+        self.exit(2)
+
+
 def _parser() -> argparse.ArgumentParser:
     """The argument parser with its sub-commands."""
-    parser = argparse.ArgumentParser(
+    parser = _OneLineParser(
         prog="meshik", description="Mesh-based inverse kinematics: pose a mesh from handle targets within the space "
                                    "of its example poses, and write the animation as compressed assets.")
     parser.add_argument("--version", action="version", version=f"meshik {__version__}")
@@ -127,7 +143,7 @@ def _parser() -> argparse.ArgumentParser:
                                            "orbit controls and a frame slider, beside the contact sheet and report "
                                            "(three.js served locally from the pinned npm packages; works offline).")
     view.add_argument("folder", type=Path, metavar="OUT", help="an output folder of pose, batch or the demo")
-    view.add_argument("--port", type=_non_negative_int, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
+    view.add_argument("--port", type=_port, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
     view.set_defaults(run=_run_view)
 
     validate = commands.add_parser("validate", help="check constraint files and print every problem",
@@ -142,7 +158,12 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
     """Options shared by `pose` and `batch`."""
     parser.add_argument("--out", "-o", required=True, type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--simplify", type=_simplify_target, metavar="N",
-                        help="simplify before posing: N triangles (an integer) or the fraction of triangles to keep (e.g. 0.25)")
+                        help="write a lighter animation of N triangles (an integer) or the fraction of triangles to keep "
+                             "(e.g. 0.25): every frame is posed at full resolution, then simplified as the examples were, "
+                             "so it moves like the full animation")
+    parser.add_argument("--simplify-first", action="store_true",
+                        help="with --simplify: pose the simplified examples instead (faster per frame, but the "
+                             "simplified mesh may choose other example weights: a limb can move differently)")
     parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
                         help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
                              "with handles locked and the error summed over all poses (default fast)")
@@ -151,10 +172,13 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
-    parser.add_argument("--glb", dest="glb", choices=("meshopt", "quantized", "draco"), default="meshopt",
-                        help="the .glb: meshopt (quantized positions and morph targets, EXT_meshopt_compression; "
-                             "default), quantized (KHR_mesh_quantization only: Blender before 5.2 and readers without "
-                             "a meshopt decoder) or draco (Draco base mesh, float32 morph targets)")
+    parser.add_argument("--glb", dest="glb", choices=("quantized", "meshopt", "draco"), default="quantized",
+                        help="the .glb: quantized (default: KHR_mesh_quantization; opens in Blender, three.js, "
+                             "Babylon.js and is fully checked by the Khronos validator), meshopt (opt-in: the same "
+                             "compressed with EXT_meshopt_compression, about 1/3 the bytes; needs a meshopt decoder: "
+                             "three.js, Babylon.js, glTF-Transform; Blender 5.0.1 refuses it, its importer reads it "
+                             "from 5.2) or draco (Draco base mesh, float32 morph targets; Blender, and three.js or "
+                             "Babylon.js with a Draco decoder). Morph weights stay in [0, 1] in every variant")
     parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
                         help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
                              "(1 to 15, default 14)")
@@ -176,9 +200,9 @@ def _run_pose(args) -> int:
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
                       force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                      glb_targets=args.glb_targets)
+                      glb_targets=args.glb_targets, simplify_first=args.simplify_first)
     if report.get("skipped") and not args.quiet:
-        print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
+        _print_line(f"{args.out}: outputs already complete (use --force to redo)", sys.stderr)
     return 0
 
 
@@ -199,10 +223,10 @@ def _run_batch(args) -> int:
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
                          threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                         glb_targets=args.glb_targets)
+                         glb_targets=args.glb_targets, simplify_first=args.simplify_first)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
-        print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
+        _print_line(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", sys.stderr)
     return 1 if failed else 0
 
 
@@ -223,10 +247,10 @@ def _run_info(args) -> int:
         print(json.dumps(summaries, indent=1))
     else:
         for summary in summaries:
-            print(summary["file"])
+            _print_line(summary["file"], sys.stdout)
             for key, value in summary.items():
                 if key != "file":
-                    print(f"  {key}: {value}")
+                    _print_line(f"  {key}: {value}", sys.stdout)
     for error in errors:
         _print_error(error)
     return 1 if errors else 0
@@ -238,7 +262,8 @@ def _run_validate(args) -> int:
 
     results = validate_files(args.files)
     for path, problems in zip(args.files, results):
-        print(f"{path}: OK" if not problems else "\n".join(problems))
+        for line in [f"{path}: OK"] if not problems else problems:
+            _print_line(line, sys.stdout)
     return 1 if any(results) else 0
 
 
@@ -248,7 +273,7 @@ def _run_view(args) -> int:
 
     server = preview_server(args.folder, args.port)
     host, port = server.server_address[:2]
-    print(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", flush=True)
+    _print_line(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", sys.stdout)
     try:
         server.serve_forever()
     except KeyboardInterrupt:
@@ -273,6 +298,14 @@ def _thread_count(text: str) -> int:
     value = _positive_int(text)
     if value > MAX_THREADS:
         raise argparse.ArgumentTypeError(f"expected an integer from 1 to {MAX_THREADS}, got {text}")
+    return value
+
+
+def _port(text: str) -> int:
+    """argparse type: a TCP port from 0 (any free one) to 65535."""
+    value = _non_negative_int(text)
+    if value > 65535:
+        raise argparse.ArgumentTypeError(f"expected a port from 0 to 65535, got {text}")
     return value
 
 

@@ -240,6 +240,53 @@ TEST(SparseCholeskyMesh, FactorizationGivesTheSameBitsOnAnyNumberOfThreads) {
   }
 }
 
+// The lower triangle of the 7-point Laplacian of an n by n by n grid plus I: separators of n^2
+// columns, so the top of its elimination tree holds supernodes large enough for their dense
+// kernels to be shared out over a team.
+CscMatrix cube_laplacian(int n) {
+  const auto index = [n](int x, int y, int z) { return (z * n + y) * n + x; };
+  CscMatrix a;
+  a.rows = a.cols = n * n * n;
+  a.col_start.push_back(0);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        a.row_index.push_back(index(x, y, z));
+        a.values.push_back(7.0);
+        for (int below : {x + 1 < n ? index(x + 1, y, z) : -1, y + 1 < n ? index(x, y + 1, z) : -1,
+                          z + 1 < n ? index(x, y, z + 1) : -1})
+          if (below >= 0) {
+            a.row_index.push_back(below);
+            a.values.push_back(-1.0);
+          }
+        a.col_start.push_back(static_cast<int>(a.row_index.size()));
+      }
+  return a;
+}
+
+TEST(SparseCholeskyMesh, LargeTopSupernodesGiveTheSameBitsOnAnyNumberOfThreads) {
+  // Node-level parallelism: a 3D grid (several subtrees, then a top of separators hundreds of
+  // columns wide) and a dense matrix (one supernode, no subtrees: its kernels alone are shared).
+  for (const CscMatrix& a : {cube_laplacian(17), lower_from_dense(random_spd(1000, 1.0, 11))}) {
+    const int n = a.rows, nrhs = 3;
+    const std::vector<double> b = random_values(static_cast<size_t>(n) * nrhs, 46);
+    SparseCholesky serial;
+    serial.analyze(a);
+    serial.factorize(a, 1);
+    std::vector<double> serial_x = b;
+    serial.solve(serial_x.data(), nrhs);
+    EXPECT_LT(relative_residual(a, serial_x, b, nrhs), 1e-10) << n << " unknowns";
+    for (int threads : {2, 3, 0}) {
+      SparseCholesky chol;
+      chol.share_analysis(serial);
+      chol.factorize(a, threads);
+      std::vector<double> x = b;
+      chol.solve(x.data(), nrhs);
+      EXPECT_EQ(x, serial_x) << n << " unknowns, " << threads << " threads";
+    }
+  }
+}
+
 TEST(SparseCholeskyMesh, HorseShiftedGraphLaplacian) {
   const auto horse = horse_or_empty();
   if (horse.num_vertices() == 0) GTEST_SKIP() << "shared data (horse-poses/reference.obj) not found";

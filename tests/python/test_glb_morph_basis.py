@@ -78,8 +78,12 @@ def test_the_basis_reproduces_an_exactly_low_rank_animation_and_bounds_its_searc
     frames = base + np.einsum("kj,jvc->kvc", amounts, modes)
     basis = low_rank_basis(base, frames, BASIS_TOLERANCE)
     assert basis.targets.shape == (2,) + rest.shape and np.abs(basis.targets).max() <= 32767
-    decoded = morphed_positions(base, basis.weights, basis.targets)
-    assert decoded.dtype == np.float32 and np.linalg.norm(decoded - frames, axis=2).max() <= BASIS_TOLERANCE
+    assert 0 <= basis.weights.min() and basis.weights.max() <= 1 and np.ptp(basis.base, axis=0).max() <= 65535
+    stored = basis.base - basis.base.min(axis=0)
+    decoded = morphed_positions(stored, basis.weights, basis.targets)
+    assert decoded.dtype == np.float32
+    decoded = (decoded + basis.base.min(axis=0)) * basis.unit
+    assert np.linalg.norm(decoded - frames, axis=2).max() <= BASIS_TOLERANCE
     many = np.repeat(frames[:1], MAX_BASIS_FRAMES + 1, axis=0)
     assert low_rank_basis(base, many, BASIS_TOLERANCE) is None
 

@@ -77,7 +77,7 @@ def test_bad_options(shot, capsys):
 
 
 def test_help_explains_every_option(capsys):
-    for command, options in {"pose": ["--out", "--simplify", "--simplifier", "--format", "--feature-space",
+    for command, options in {"pose": ["--out", "--simplify", "--simplify-first", "--simplifier", "--format", "--feature-space",
                                       "--quantization-bits", "--force", "--quiet"],
                              "batch": ["--jobs", "--out", "--quiet"], "blend": ["--weights", "--out", "--feature-space"],
                              "info": ["--json"]}.items():

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 namespace meshik::constraints {
 namespace {
@@ -20,14 +21,18 @@ struct KnownGroups {
   std::vector<HandleGroup> good;
   std::set<std::string> bad;
   std::vector<std::string> names;  // every group's name, good or bad, in the file's order
+  std::unordered_map<std::string, std::size_t> index;  // name -> position in `good` (constant-time lookups)
   bool member_ok = true;  // "handles" was an object with at least one group
 
   const HandleGroup* find(const std::string& name) const {
-    for (const HandleGroup& group : good)
-      if (group.name == name) return &group;
-    return nullptr;
+    const auto found = index.find(name);
+    return found == index.end() ? nullptr : &good[found->second];
   }
 };
+
+// The frame rates accepted: key times k / fps must stay finite and distinct in the float32 seconds
+// of a glTF animation for any frame count the format allows.
+constexpr double kMinFps = 1e-3, kMaxFps = 1e4;
 
 // Whether `name` can be a file name: a letter, digit, '_' or '-', then up to 99 of those or '.'.
 bool is_frame_name(const std::string& name) {
@@ -87,7 +92,13 @@ void read_options(const JsonValue& top, ConstraintDocument& document, ViolationL
   if (const JsonValue* value = top.find("tolerance"))
     document.tolerance = expect_number(*value, "tolerance", problems, 0.0, true);
   if (const JsonValue* value = top.find("fps"))
-    if (auto fps = expect_number(*value, "fps", problems, 0.0, true)) document.fps = *fps;
+    if (auto fps = expect_number(*value, "fps", problems, 0.0, true)) {
+      if (*fps < kMinFps || *fps > kMaxFps)
+        problems.add("fps", "expected a frame rate from " + format_general(kMinFps) + " to " + format_general(kMaxFps) +
+                                ", got " + value->text);
+      else
+        document.fps = *fps;
+    }
 }
 
 // One handle group (a vertex-index list or a {near, radius} region); `owner` maps each vertex
@@ -144,8 +155,10 @@ KnownGroups read_handles(const JsonValue& value, ViolationList& problems) {
     if (name.rfind('_', 0) == 0) continue;  // the user's own annotation
     groups.names.push_back(name);
     auto group = read_group(name, spec, child_path("handles", name), owner, problems);
-    if (group)
+    if (group) {
+      groups.index.emplace(group->name, groups.good.size());
       groups.good.push_back(std::move(*group));
+    }
     else
       groups.bad.insert(name);
   }
@@ -304,18 +317,21 @@ std::vector<Frame> read_frames(const JsonValue& value, const KnownGroups& groups
     char numbered[32];
     std::snprintf(numbered, sizeof numbered, "%04zu", number + 1);
     frame.name = numbered;
-    if (const JsonValue* name = spec.find("name")) {
+    const JsonValue* name = spec.find("name");
+    if (name) {
       const std::string name_path = child_path(path, "name");
       if (auto text = expect_string(*name, name_path, problems)) {
         frame.name = *text;
-        const auto earlier = seen.find(frame.name);
         if (!is_frame_name(*text))
           problems.add(name_path, quoted_text(*text) + " cannot be a file name: use letters, digits, \".\", \"_\", \"-\" (at most 100)");
-        else if (earlier != seen.end())
-          problems.add(name_path, "\"" + frame.name + "\" is also the name of frames[" + std::to_string(earlier->second) + "]");
       }
     }
-    seen.emplace(frame.name, number);
+    // Names given and default names ("0002" for frames[1]) share one set of output files.
+    const auto [earlier, fresh] = seen.emplace(frame.name, number);
+    if (!fresh)
+      problems.add(name ? child_path(path, "name") : path,
+                   (name ? "\"" + frame.name + "\" is" : "its default name \"" + frame.name + "\" is") +
+                       " also the name of frames[" + std::to_string(earlier->second) + "]");
     if (const JsonValue* targets = spec.find("targets")) {
       const std::string targets_path = child_path(path, "targets");
       if (expect_object(*targets, targets_path, problems)) read_frame_targets(*targets, targets_path, groups, frame, problems);

@@ -20,6 +20,7 @@
 // has its own work buffer).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -111,6 +112,9 @@ class SparseCholesky {
   // The pattern given to analyze() (rows, cols, col_start, row_index; values empty), shared by
   // every SparseCholesky analysed like this one; an empty matrix before analyze().
   const CscMatrix& analyzed_pattern() const;
+  // Bytes held by the analysis (the pattern, ordering, symbolic factor and schedules; shared by
+  // every SparseCholesky sharing it), 0 before analyze().
+  size_t analysis_bytes() const;
 
  private:
   struct Impl;

@@ -146,14 +146,15 @@ void assemble_block(const Multifrontal& mf, int s, const Supernode& node, Worksp
   }
 }
 
-// After the block of supernode s is factored: builds its update matrix -L21 L21^T plus the
-// rest of its children's updates on top of workspace `me`'s stack, then moves it down over the
-// children's that wait on that stack (on its top, the first such child lowest).
-void push_update(Multifrontal& mf, int s, const Supernode& node, int me) {
+// After the block of supernode s is factored: builds its update matrix -L21 L21^T (on `team`
+// threads when large) plus the rest of its children's updates on top of workspace `me`'s stack,
+// then moves it down over the children's that wait on that stack (on its top, the first such child
+// lowest).
+void push_update(Multifrontal& mf, int s, const Supernode& node, int me, int team) {
   const SymbolicFactor& f = mf.f;
   Workspace& w = mf.spaces[me];
   double* u = w.stack.get() + w.top;
-  if (node.m > 0) negative_lower_product(node.block + node.k, node.r, node.m, node.k, u);
+  if (node.m > 0) negative_lower_product(node.block + node.k, node.r, node.m, node.k, u, team);
   for (size_t c = 0; c < w.children.size(); ++c)
     add_to_update(w.children[c], w.first_update_column[c], node.k, u, node.m);
   size_t base = w.top;
@@ -169,19 +170,21 @@ void push_update(Multifrontal& mf, int s, const Supernode& node, int me) {
   w.top = base + size;
 }
 
-// Factors supernode s on workspace `me`. Returns -1, or the column (in the factor's order) whose
+// Factors supernode s on workspace `me`, its dense kernels on `team` threads when large (node-level
+// parallelism: the same bits for any team). Returns -1, or the column (in the factor's order) whose
 // pivot is not positive.
-int factor_supernode(Multifrontal& mf, int s, int me) {
+int factor_supernode(Multifrontal& mf, int s, int me, int team = 1) {
   const Supernode node = supernode(mf.f, mf.values, s);
   assemble_block(mf, s, node, mf.spaces[me]);
-  const int failed = factor_panel(node.block, node.r, node.k);
+  const int failed = factor_panel(node.block, node.r, node.k, team);
   if (failed >= 0) return node.first + failed;
-  push_update(mf, s, node, me);
+  push_update(mf, s, node, me, team);
   return -1;
 }
 
 // The schedule's subtrees on `team` threads (workspace t for thread t, each subtree's root update
-// left on its thread's stack), then its top on workspace `team`. Returns -1, or the column of the
+// left on its thread's stack), then its top on workspace `team`, supernode after supernode, each
+// large one's dense kernels on the whole team. Returns -1, or the column of the
 // first supernode (in the serial order) whose pivot is not positive.
 int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int team) {
   const SymbolicFactor& f = mf.f;
@@ -225,7 +228,7 @@ int factorize_by_subtrees(Multifrontal& mf, const SubtreeSchedule& schedule, int
     }
   for (int s : schedule.top) {
     if (s > first_failure) break;
-    const int top_column = factor_supernode(mf, s, team);
+    const int top_column = factor_supernode(mf, s, team, team);
     if (top_column >= 0) return top_column;
   }
   return column;
@@ -261,7 +264,7 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
   } else {
     Multifrontal mf(f, lower, lower_values, values, 1);
     mf.spaces[0].size_for(f, f.stack_size, most_child_rows(f));
-    for (int s = 0; s < ns && failed < 0; ++s) failed = factor_supernode(mf, s, 0);
+    for (int s = 0; s < ns && failed < 0; ++s) failed = factor_supernode(mf, s, 0, team);
   }
   if (failed >= 0) throw_not_positive_definite(original_column[failed]);
 }

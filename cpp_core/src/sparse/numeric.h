@@ -28,8 +28,10 @@ void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_va
 // children's update matrices, is factored densely, and leaves its own update matrix on a
 // stack for its parent. With team > 1 threads (a thread_count) and a schedule
 // (subtree_schedule of symbolic) of two or more subtrees, each subtree runs on one thread with
-// its own stack, then the top on one; every supernode's arithmetic is the same, so the values are
-// the same bits for any team, and so is the error (the first failing pivot in the serial order).
+// its own stack, then the top supernode by supernode, the dense kernels of a large one split over
+// the team in fixed pieces (a tree of fewer subtrees: every supernode so). Every supernode's
+// arithmetic is the same, so the values are the same bits for any team, and so is the error (the
+// first failing pivot in the serial order).
 // original_column[k] names pivot k in the error. Throws NotPositiveDefinite.
 void factorize_supernodal(const SymbolicFactor& symbolic, const Pattern& lower, const double* lower_values,
                           const std::vector<int>& original_column, std::vector<double>& values,

@@ -175,6 +175,31 @@ int SparseCholesky::size() const { return static_cast<int>(impl_->analysis().per
 
 long long SparseCholesky::factor_nonzeros() const { return impl_->analysis().factor_nonzeros; }
 
+namespace {
+
+template <typename T>
+size_t bytes_of(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+}  // namespace
+
+size_t SparseCholesky::analysis_bytes() const {
+  if (!impl_->pattern) return 0;
+  const AnalyzedPattern& p = *impl_->pattern;
+  const Analysis& a = p.analysis;
+  const SimplicialPrefix& prefix = a.prefix;
+  const SymbolicFactor& f = a.symbolic;
+  const SubtreeSchedule& t = p.schedule;
+  return bytes_of(p.pattern.col_start) + bytes_of(p.pattern.row_index) + bytes_of(a.perm) +
+         bytes_of(a.lower.pattern.col_start) + bytes_of(a.lower.pattern.row_index) + bytes_of(a.lower.source) +
+         bytes_of(prefix.diagonal) + bytes_of(prefix.row_start) + bytes_of(prefix.rows) + bytes_of(prefix.below) +
+         bytes_of(prefix.update_start) + bytes_of(prefix.update) + bytes_of(f.first_column) + bytes_of(f.row_start) +
+         bytes_of(f.rows) + bytes_of(f.value_start) + bytes_of(f.parent) + bytes_of(f.child_start) +
+         bytes_of(f.children) + bytes_of(t.top) + bytes_of(t.first) + bytes_of(t.root) + bytes_of(t.stack) +
+         bytes_of(t.top_row) + bytes_of(t.top_pass);
+}
+
 const CscMatrix& SparseCholesky::analyzed_pattern() const {
   static const CscMatrix kNone;
   return impl_->pattern ? impl_->pattern->pattern : kNone;

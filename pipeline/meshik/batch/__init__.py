@@ -28,6 +28,7 @@ from meshik.batch.display import BatchDisplay
 from meshik.batch.job import run_job
 from meshik.errors import OutputError, PipelineError
 from meshik.outputs.safe_paths import child_path
+from meshik.outputs.staging import REPORT_NAME, check_not_inputs
 
 SUMMARY_NAME = "batch-report.json"
 DEFAULT_RETRIES = 2
@@ -114,15 +115,19 @@ def run_batch(constraint_paths: Sequence, out_dir, client=None, jobs: Optional[i
 
     client: a distributed.Client to run on; without one, batch_client(jobs, memory_limit,
     scheduler, retries) makes one for the batch. cache_mb: each worker's example-set cache bound.
-    job_options: JSON-friendly keyword arguments of pose_job (simplify, simplifier, formats,
+    job_options: JSON-friendly keyword arguments of pose_job (simplify, simplifier, simplify_first, formats,
     feature_space, quantization_bits, force). Returns one JobOutcome per file, in the order given;
     failures are printed even when quiet. Ctrl+C or SIGTERM stops the batch: no job is left running
     or writing (on a given client, the workers running this batch's jobs are restarted), the
     report lists the unfinished jobs as "interrupted", and KeyboardInterrupt is raised.
-    Raises PipelineError when two files would write to the same job folder.
+    Raises PipelineError when two files would write to the same job folder, OutputError when the
+    batch's report or a job's report.json would replace one of the constraint files.
     """
     paths = [Path(p) for p in constraint_paths]
     names = job_names(paths)
+    check_not_inputs(Path(out_dir), [SUMMARY_NAME], paths)
+    for path, name in zip(paths, names):  # a job's report.json replacing its own constraint file
+        check_not_inputs(Path(out_dir) / name, [REPORT_NAME], [path])
     with _sigterm_as_interrupt():
         if client is not None:
             return _run(client, paths, names, Path(out_dir), cache_mb, quiet, stream, job_options, restart_on_stop=True)

@@ -4,6 +4,8 @@ run_job never raises for a failing job: bad input comes back as status "failed" 
 so Dask does not retry it. Only the death of the worker process (a crash in the core, the memory
 limit, a kill) makes the scheduler run the job again on another worker.
 """
+import ctypes
+import gc
 import os
 import signal
 import socket
@@ -20,6 +22,9 @@ from meshik.posing.example_cache import ExampleSetCache
 KILL_WORKER_VARIABLE = "MESHIK_TEST_KILL_WORKER"
 
 _KILL_AFTER_SECONDS = 0.5
+# A worker's cache is trimmed after a job while its resident memory is above this fraction of
+# Dask's pause threshold.
+PAUSE_MARGIN = 0.85
 
 _cache: Optional[ExampleSetCache] = None
 
@@ -27,7 +32,7 @@ _cache: Optional[ExampleSetCache] = None
 def run_job(constraints: str, destination: str, options: Dict[str, Any], cache_bytes: int) -> Dict[str, Any]:
     """Pose one constraint file into `destination` with meshik.pipeline.pose_job.
 
-    options: pose_job keyword arguments (simplify, simplifier, formats, feature_space,
+    options: pose_job keyword arguments (simplify, simplifier, simplify_first, formats, feature_space,
     quantization_bits, force); cache_bytes: memory bound of this process's example-set cache
     (0: no cache). Returns {"status": "done" | "skipped" | "failed", "reason": message or None,
     "frames": frame count, "seconds": time in this function, "worker": "host:pid"}.
@@ -44,8 +49,37 @@ def run_job(constraints: str, destination: str, options: Dict[str, Any], cache_b
         status, reason, frames = "failed", str(error), 0
     except Exception as error:  # noqa: BLE001 - any other failure is reported with its type, never retried
         status, reason, frames = "failed", f"{type(error).__name__}: {error}", 0
+    _stay_below_pause(example_cache(cache_bytes))
     return {"status": status, "reason": reason, "frames": frames, "seconds": time.perf_counter() - start,
             "worker": f"{socket.gethostname()}:{os.getpid()}"}
+
+
+def _stay_below_pause(cache: Optional[ExampleSetCache]) -> None:
+    """Drop cached example sets while this Dask worker's resident memory is above PAUSE_MARGIN of
+    the level where Dask pauses it (memory limit x pause fraction): a paused worker takes no job,
+    so a cache holding it there would stall the batch for ever. Freed heap is handed back to the
+    system (malloc_trim) so that the resident size Dask watches falls. Nothing outside a worker
+    with a memory limit."""
+    if cache is None:
+        return
+    try:
+        from distributed import get_worker
+
+        manager = get_worker().memory_manager
+    except (ImportError, ValueError, AttributeError):  # not in a Dask worker
+        return
+    limit, pause = manager.memory_limit, manager.memory_pause_fraction
+    if not limit or not pause:
+        return
+    import psutil
+
+    excess = psutil.Process().memory_info().rss - int(PAUSE_MARGIN * pause * limit)
+    if excess > 0 and cache.release(excess):
+        gc.collect()
+        try:
+            ctypes.CDLL("libc.so.6").malloc_trim(0)
+        except (OSError, AttributeError):  # not glibc
+            pass
 
 
 def example_cache(max_bytes: int) -> Optional[ExampleSetCache]:

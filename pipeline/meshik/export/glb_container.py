@@ -11,6 +11,8 @@ from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 
+from meshik.export.gltf_checks import check_document
+
 MESHOPT_EXTENSION = "EXT_meshopt_compression"
 GLB_MAGIC, GLB_VERSION = 0x46546C67, 2
 _CHUNK_JSON, _CHUNK_BIN = 0x4E4F534A, 0x004E4942
@@ -122,7 +124,8 @@ def glb_bytes(document: Dict[str, Any], binary: bytes) -> bytes:
 
 
 def split_glb(data: bytes) -> Tuple[Dict[str, Any], bytes]:
-    """(JSON document, binary chunk) of GLB bytes; ValueError when the container is malformed."""
+    """(JSON document, binary chunk) of GLB bytes; ValueError when the container is malformed or a
+    field MeshIK's readers use is not what they need (meshik.export.gltf_checks)."""
     if len(data) < 20:
         raise ValueError("not a GLB file: too short")
     magic, version, length = struct.unpack_from("<III", data, 0)
@@ -131,13 +134,19 @@ def split_glb(data: bytes) -> Tuple[Dict[str, Any], bytes]:
     json_length, json_type = struct.unpack_from("<II", data, 12)
     if json_type != _CHUNK_JSON:
         raise ValueError("GLB: the first chunk is not JSON")
-    document = json.loads(data[20:20 + json_length])
+    if 20 + json_length > len(data):
+        raise ValueError(f"GLB: the JSON chunk's length {json_length} runs past the file's end")
+    try:
+        document = json.loads(data[20:20 + json_length])
+    except RecursionError:
+        raise ValueError("GLB: the JSON chunk is nested too deeply") from None
     offset = 20 + json_length
     binary = b""
     if offset + 8 <= len(data):
         binary_length, binary_type = struct.unpack_from("<II", data, offset)
         if binary_type == _CHUNK_BIN:
             binary = data[offset + 8:offset + 8 + binary_length]
+    check_document(document, len(binary))
     return document, binary
 
 

@@ -19,7 +19,7 @@ from meshik.export.draco import ID_ATTRIBUTE, QuantizationGrid, decode, encode_f
 from meshik.export.glb_container import (ARRAY_BUFFER, FLOAT, UNSIGNED_INT, BinaryBuilder, accessor, glb_bytes,
                                          read_accessor, view_reader)
 from meshik.export.glb_layout import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
-                                      check_vertex_ids, frame_names_of, glb_size_problem, key_times_of, key_weights_of,
+                                      check_vertex_ids, default_weights_of, frame_names_of, glb_size_problem, key_times_of, key_weights_of,
                                       rows_of_ids)
 
 DRACO_EXTENSION = "KHR_draco_mesh_compression"
@@ -79,4 +79,5 @@ def read_draco_glb(document: Dict[str, Any], binary: bytes) -> AnimationGlb:
     frames = np.stack([base + read_accessor(document, view_bytes, target["POSITION"]) for target in primitive["targets"]])
     return AnimationGlb(rest=decoded.vertices, faces=decoded.faces, vertex_ids=decoded.vertex_ids,
                         frames=frames.astype(np.float64), frame_names=frame_names_of(document),
-                        times=key_times_of(document, view_bytes), weights=key_weights_of(document, view_bytes))
+                        times=key_times_of(document, view_bytes), weights=key_weights_of(document, view_bytes),
+                        default_weights=default_weights_of(document))

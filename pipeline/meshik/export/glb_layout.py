@@ -66,15 +66,20 @@ def add_frame_animation(binary: BinaryBuilder, accessors: List[Dict[str, Any]], 
 
 def animation_document(name: str, generator: str, extensions: Sequence[str], node: Dict[str, Any],
                        primitive: Dict[str, Any], frame_names: Sequence[str], times_accessor: int,
-                       accessors: List[Dict[str, Any]], binary: BinaryBuilder) -> Dict[str, Any]:
+                       accessors: List[Dict[str, Any]], binary: BinaryBuilder,
+                       first_weights: Optional[Sequence[float]] = None) -> Dict[str, Any]:
     """The glTF JSON of one animated mesh: node (without "mesh" and "name") places mesh 0, whose one
     primitive has the morph targets (extras.targetNames: the frame names when there is one target
     per frame; for a basis "basis j", and extras.frameNames the frames); animation 0 plays the
-    weights of `times_accessor`."""
+    weights of `times_accessor`. The mesh's default weights show the first frame (a reader that
+    ignores the animation shows it): first_weights (#targets, a basis' first key), or target 0 alone
+    when None (one target per frame)."""
     target_count = len(primitive["targets"])
     extras: Dict[str, Any] = {"targetNames": list(frame_names)}
     if target_count != len(frame_names):
         extras = {"targetNames": [f"basis {j}" for j in range(target_count)], "frameNames": list(frame_names)}
+    if first_weights is None:
+        first_weights = [1.0] + [0.0] * (target_count - 1)
     return {
         "asset": {"version": "2.0", "generator": generator},
         "extensionsUsed": list(extensions),
@@ -82,7 +87,7 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
         "scene": 0,
         "scenes": [{"nodes": [0]}],
         "nodes": [dict({"mesh": 0, "name": name}, **node)],
-        "meshes": [{"name": name, "primitives": [primitive], "weights": [0.0] * target_count,
+        "meshes": [{"name": name, "primitives": [primitive], "weights": [float(w) for w in first_weights],
                     "extras": extras}],
         "animations": [{"name": name, "samplers": [{"input": times_accessor, "output": times_accessor + 1,
                                                     "interpolation": "LINEAR"}],
@@ -97,9 +102,10 @@ def animation_document(name: str, generator: str, extensions: Sequence[str], nod
 class AnimationGlb:
     """What read_animation_glb finds in a MeshIK .glb.
 
-    rest: #D by 3 decoded base positions (Draco order); faces: #F by 3; vertex_ids: #D;
-    frames: #frames by #D by 3 (rest + the weighted morph targets); frame_names; times: #frames
-    seconds; weights: #frames by #targets, the animation's morph weights at each key.
+    rest: #D by 3 decoded base positions (Draco order; the rest, or a morph basis' corner);
+    faces: #F by 3; vertex_ids: #D; frames: #frames by #D by 3 (rest + the weighted morph targets);
+    frame_names; times: #frames seconds; weights: #frames by #targets, the animation's morph weights
+    at each key; default_weights: #targets, the mesh's weights without the animation.
     """
     rest: np.ndarray
     faces: np.ndarray
@@ -108,6 +114,7 @@ class AnimationGlb:
     frame_names: Tuple[str, ...]
     times: np.ndarray
     weights: np.ndarray
+    default_weights: np.ndarray
 
 
 def frame_names_of(document: Dict[str, Any]) -> Tuple[str, ...]:
@@ -115,6 +122,12 @@ def frame_names_of(document: Dict[str, Any]) -> Tuple[str, ...]:
     targetNames)."""
     extras = document["meshes"][0].get("extras", {})
     return tuple(extras.get("frameNames", extras.get("targetNames", [])))
+
+
+def default_weights_of(document: Dict[str, Any]) -> np.ndarray:
+    """#targets weights of the first mesh without animation (glTF's default: all zero)."""
+    mesh = document["meshes"][0]
+    return np.asarray(mesh.get("weights", [0.0] * len(mesh["primitives"][0].get("targets", []))), dtype=np.float64)
 
 
 def key_times_of(document: Dict[str, Any], view_bytes) -> np.ndarray:

@@ -6,8 +6,12 @@ SHORT q_k - q_rest (the deltas share the base's dequantization, as the extension
 node's translation (the grid's origin) and uniform scale (its step) turn grid units into the
 solver's coordinates. targets="frames": one target per frame, rest + target k decodes to the grid
 point nearest frame k, the weights are one sparse accessor; targets="basis" (morph_basis): r < #frames
-SHORT targets and dense #frames x r weights whose decoding stays within BASIS_TOLERANCE grid units
-of every frame (the per-frame files' own bound), one target per frame when no smaller basis does.
+SHORT targets on an UNSIGNED_SHORT base at the corner of the weights' box, in a node unit finer than
+the grid (the node's scale), and dense #frames x r weights inside [0, 1] whose decoding stays within
+BASIS_TOLERANCE grid units of every frame (the per-frame files' own bound), one target per frame
+when no smaller basis does. Every variant's weights lie in [0, 1] (readers that map morph targets
+to shape-key sliders, as Blender's importer does, clamp them there), and the mesh's default weights
+are the first key's.
 Elements are padded to 8 bytes (4 shorts). `_ORIGINAL_ID` (float32, exact below 2**24) keeps each vertex's
 input id. No normals: the deltas of normals would add a stream per frame; viewers compute them.
 Triangles are in meshoptimizer's vertex-cache order; vertices in a nearest-neighbour walk over the
@@ -25,8 +29,8 @@ from meshik.export.glb_container import (ARRAY_BUFFER, FLOAT, MESHOPT_EXTENSION,
                                          BinaryBuilder, MeshoptBinaryBuilder, accessor, glb_bytes, read_accessor,
                                          view_reader)
 from meshik.export.glb_layout import (ID_SEMANTIC, AnimationGlb, add_frame_animation, animation_document,
-                                      check_vertex_ids, frame_names_of, glb_size_problem, key_times_of,
-                                      key_weights_of)
+                                      check_vertex_ids, default_weights_of, frame_names_of, glb_size_problem,
+                                      key_times_of, key_weights_of)
 from meshik.export.morph_basis import low_rank_basis, morphed_positions
 
 QUANTIZATION_EXTENSION = "KHR_mesh_quantization"
@@ -67,7 +71,14 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     base = _grid_coordinates(np.asarray(rest, dtype=np.float64)[old_of_new], grid)
     basis = low_rank_basis(base, (frames[:, old_of_new] - np.asarray(grid.origin)) / grid.step, BASIS_TOLERANCE) \
         if targets == "basis" else None
-    deltas = _grid_coordinates(frames[:, old_of_new], grid) - base if basis is None else basis.targets
+    origin = np.asarray(grid.origin, dtype=np.float64)
+    node = {"translation": origin.tolist(), "scale": [grid.step] * 3}
+    if basis is None:
+        deltas = _grid_coordinates(frames[:, old_of_new], grid) - base
+    else:  # the basis' corner, stored from its smallest coordinates, in its own node unit
+        offset = basis.base.min(axis=0)
+        base, deltas, unit = basis.base - offset, basis.targets, grid.step * basis.unit
+        node = {"translation": (origin + offset * unit).tolist(), "scale": [unit] * 3}
 
     binary = MeshoptBinaryBuilder() if meshopt else BinaryBuilder()
     count = len(rest)
@@ -88,9 +99,8 @@ def quantized_animation_glb(rest: np.ndarray, faces: np.ndarray, frames: np.ndar
     primitive = {"attributes": {"POSITION": 0, ID_SEMANTIC: 2}, "indices": 1, "mode": 4,
                  "targets": [{"POSITION": 3 + k} for k in range(len(deltas))]}
     extensions = [QUANTIZATION_EXTENSION] + ([MESHOPT_EXTENSION] if meshopt else [])
-    node = {"translation": list(grid.origin), "scale": [grid.step] * 3}
     document = animation_document(name, generator, extensions, node, primitive, frame_names, times_accessor, accessors,
-                                  binary)
+                                  binary, None if basis is None else basis.weights[0])
     return glb_bytes(document, bytes(binary.data))
 
 
@@ -120,7 +130,8 @@ def read_quantized_glb(document: Dict[str, Any], binary: bytes) -> AnimationGlb:
     ids = read_accessor(document, view_bytes, primitive["attributes"][ID_SEMANTIC]).reshape(-1).astype(np.int64)
     return AnimationGlb(rest=translation + scale * base, faces=faces, vertex_ids=ids,
                         frames=translation + scale * morphed_positions(base, weights, deltas).astype(np.float64),
-                        frame_names=frame_names_of(document), times=key_times_of(document, view_bytes), weights=weights)
+                        frame_names=frame_names_of(document), times=key_times_of(document, view_bytes), weights=weights,
+                        default_weights=default_weights_of(document))
 
 
 def _node_transform(node: Dict[str, Any]) -> Tuple[np.ndarray, np.ndarray]:

@@ -7,6 +7,7 @@ import numpy as np
 
 from meshik.export.draco import decode
 from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_readers import readers_of
 from meshik.export.glb_reader import read_animation_glb
 
 
@@ -37,7 +38,8 @@ class OutputErrors:
         expected = self.frames[:, rows_of_ids(self.vertex_ids, animation.vertex_ids)]
         self.glbs[name] = {"variant": variant, "bytes": len(data), "position_bits": grid.bits, "grid_step": grid.step,
                            "morph_targets": int(animation.weights.shape[1]),
-                           "max_position_error": self._error(animation.frames, expected)}
+                           "max_position_error": self._error(animation.frames, expected),
+                           "readers": readers_of(variant)}
 
     def _error(self, decoded: np.ndarray, expected: np.ndarray) -> float:
         """Largest distance between decoded and expected (..., 3) positions over the diagonal;
@@ -49,7 +51,8 @@ class OutputErrors:
 
     def report(self) -> Dict[str, Dict[str, Any]]:
         """{"frames/*.drc": {files, bytes, max_position_error}, "<job>.glb": {variant, bytes,
-        position_bits, grid_step, morph_targets, max_position_error}}, only the outputs written."""
+        position_bits, grid_step, morph_targets, max_position_error, readers (glb_readers.readers_of)}},
+        only the outputs written."""
         entries: Dict[str, Dict[str, Any]] = {}
         if self.drc_frames:
             entries["frames/*.drc"] = {"files": self.drc_frames, "bytes": self.drc_bytes,

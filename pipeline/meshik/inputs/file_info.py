@@ -66,15 +66,22 @@ def _describe_draco(path: Path) -> Dict[str, Any]:
 
 
 def _describe_glb(path: Path) -> Dict[str, Any]:
-    """Counts of a MeshIK animation .glb: vertices, triangles, frames, duration."""
+    """Counts of a MeshIK animation .glb: vertices, triangles, frames, duration, and its variant with
+    the readers that open it (glb_readers)."""
+    from meshik.export.glb_container import split_glb
     from meshik.export.glb_reader import read_animation_glb
+    from meshik.export.glb_readers import readers_of, variant_of
 
     try:
-        animation = read_animation_glb(path.read_bytes())
-    except (ValueError, KeyError, IndexError, TypeError) as error:
-        raise MeshFileError(f"{path}: not a MeshIK animation .glb ({type(error).__name__}: {error})") from None
+        data = path.read_bytes()
+        animation = read_animation_glb(data)
+        variant = variant_of(split_glb(data)[0].get("extensionsRequired", []))
+    except (ValueError, KeyError, IndexError, TypeError) as error:  # the fields are checked first (gltf_checks)
+        detail = " ".join(str(error).split())[:300]
+        raise MeshFileError(f"{path}: not a MeshIK animation .glb ({type(error).__name__}: {detail})") from None
     return {"file": str(path), "kind": "glb animation", "vertices": len(animation.rest), "triangles": len(animation.faces),
-            "frames": len(animation.frames), "duration_seconds": float(animation.times[-1]) if len(animation.times) else 0.0}
+            "frames": len(animation.frames), "duration_seconds": float(animation.times[-1]) if len(animation.times) else 0.0,
+            "morph_targets": int(animation.weights.shape[1]), "variant": variant, **readers_of(variant)}
 
 
 def _describe_constraints(path: Path) -> Dict[str, Any]:

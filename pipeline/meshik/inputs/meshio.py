@@ -12,6 +12,7 @@ import numpy as np
 
 from meshik.errors import MeshFileError, OutputError
 from meshik.inputs.isolated_load import check_input_file, isolated_load
+from meshik.inputs.mesh_values import check_mesh_values
 from meshik.inputs.meshlab_module import pymeshlab_module
 from meshik.inputs.obj_text import check_obj_vertices
 from meshik.outputs.safe_paths import utf8_name
@@ -22,6 +23,9 @@ _PLAIN_SAVE_OPTIONS = {"save_vertex_color": False, "save_vertex_quality": False,
                        "save_face_color": False, "save_face_quality": False, "save_wedge_texcoord": False,
                        "save_wedge_normal": False}
 _UNKNOWN_PARAMETER = re.compile(r"Parameter (\w+) not found")
+# The largest coordinate magnitude accepted: products of coordinates (areas, normal matrices)
+# must stay far inside float64's range and the single-precision features' (3.4e38).
+MAX_COORDINATE = 1e12
 
 
 @dataclass(frozen=True)
@@ -44,16 +48,22 @@ def load_mesh(path) -> Tuple[np.ndarray, np.ndarray]:
 
     The file is read by MeshLab's readers in a forked child process (see isolated_load), since some
     of them crash on malformed files (an OBJ or OFF face index out of range); an OBJ's vertex lines are
-    checked first (meshik.inputs.obj_text: the reader reads a garbled coordinate as 0). MeshLab's readers drop
-    vertices with non-finite coordinates (and their triangles) while loading.
+    checked first (meshik.inputs.obj_text: the reader reads a garbled coordinate as 0), and every format's
+    coordinates are checked for NaN and infinity (meshik.inputs.mesh_values: the readers would drop those
+    vertices and shift every later index). Coordinates beyond MAX_COORDINATE are refused.
     """
     path = Path(path)
     check_input_file(path, "mesh file")
     if path.suffix.lower() == ".obj":
         check_obj_vertices(path)
+    check_mesh_values(path, path.read_bytes())
     vertices, faces = isolated_load(path)
     if len(faces) == 0:
         raise MeshFileError(f"{path}: the mesh has no triangles")
+    far = np.flatnonzero(~(np.abs(vertices) <= MAX_COORDINATE).all(axis=1))
+    if len(far):
+        raise MeshFileError(f"{path}: vertex {far[0]} has the coordinates {vertices[far[0]].tolist()}, beyond the "
+                            f"{MAX_COORDINATE:g} accepted (the features and weights would lose all precision)")
     bad = np.flatnonzero(((faces < 0) | (faces >= len(vertices))).any(axis=1))
     if len(bad):
         raise MeshFileError(f"{path}: triangle {bad[0]} has corners {faces[bad[0]].tolist()} but the mesh has "
@@ -141,18 +151,29 @@ def surface_distance(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np
     MeshLab's sampler: every vertex plus points on edges and faces (about `samples` per mesh),
     each measured to the nearest point of the other surface; returns the largest distance.
     """
+    return surface_deviation(vertices_a, faces_a, vertices_b, faces_b, samples)[1]
+
+
+def surface_deviation(vertices_a: np.ndarray, faces_a: np.ndarray, vertices_b: np.ndarray, faces_b: np.ndarray,
+                      samples: int = 100000) -> Tuple[float, float]:
+    """(mean, max) distance between two triangle meshes (#V by 3 positions, #F by 3 each), both ways.
+
+    MeshLab's Hausdorff sampler run from each mesh to the other (about `samples` points per mesh):
+    max is the symmetric Hausdorff distance, mean the average of the two directions' mean distances.
+    """
     pymeshlab = pymeshlab_module()
 
     meshes = pymeshlab.MeshSet()
     for vertices, faces in ((vertices_a, faces_a), (vertices_b, faces_b)):
         meshes.add_mesh(pymeshlab.Mesh(vertex_matrix=np.asarray(vertices, dtype=np.float64),
                                        face_matrix=np.asarray(faces, dtype=np.int32)))
-    worst = 0.0
+    means, worst = [], 0.0
     for sampled, target in ((0, 1), (1, 0)):
         result = meshes.get_hausdorff_distance(sampledmesh=sampled, targetmesh=target, samplevert=True, sampleedge=True,
                                                sampleface=True, samplenum=samples, maxdist=pymeshlab.PercentageValue(100))
+        means.append(result["mean"])
         worst = max(worst, result["max"])
-    return worst
+    return float(np.mean(means)), worst
 
 
 def saveable_format(extension: str) -> bool:

@@ -14,7 +14,12 @@ on where the destination lies:
   whenever report.json is present, every file it lists has exactly the bytes it records (their
   SHA-256): a run killed while it commits leaves no report (the folder reads as incomplete, never
   as the old result beside new files), and the next run completes it.
-An interrupted job leaves only its hidden staging folder, which the next run there removes.
+An interrupted job leaves only its hidden staging folder, which the next run there removes: a
+folder counts as abandoned staging only when it holds the marker file the run that made it wrote
+(a user's own folder named like one is left alone) and that run's process no longer runs.
+
+No output may land on one of the run's inputs: check_not_inputs compares every output path with
+the inputs by real path and by (device, inode) before anything is written, and commit() checks again.
 
 A run removes an earlier output only when it can prove that it wrote it: the earlier report must
 list the file inside the destination with the SHA-256 of the bytes written then, the file on disk
@@ -37,6 +42,23 @@ REPORT_NAME = "report.json"
 _STAGING_PREFIX = ".meshik-partial-"
 # Where commit() keeps the previous report while it moves the new files into place.
 _REPLACED_REPORT_NAME = ".meshik-replaced-report.json"
+# Written into every staging folder when it is made: only folders holding it are ever removed as stale.
+_STAGING_MARKER = ".meshik-staging"
+
+
+def check_not_inputs(destination: Path, relatives: Iterable[str], inputs: Iterable) -> None:
+    """OutputError naming the output and the input when an output file `destination/relative`
+    (relatives: e.g. "report.json", "frames/0001.obj") is one of `inputs`, by real path or by
+    (device, inode) (a hard link or a link to it); None otherwise. Writes nothing."""
+    input_list = [Path(p) for p in inputs]
+    real_inputs = {os.path.realpath(p): p for p in input_list}
+    input_ids = {_file_id(p): p for p in input_list} if input_list else {}
+    input_ids.pop(None, None)
+    for relative in relatives:
+        target = Path(destination) / relative
+        same = real_inputs.get(os.path.realpath(target)) or input_ids.get(_file_id(target))
+        if same is not None:
+            raise OutputError(f"{target}: this output would replace the input {same}: choose another output folder")
 
 
 def check_writable(destination: Path) -> None:
@@ -105,6 +127,7 @@ class StagedOutput:
             suffix = f"-{self.destination.name}" if self.swapping else ""
             self.staging = home / f"{_STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:8]}{suffix}"
             self.staging.mkdir()
+            (self.staging / _STAGING_MARKER).write_bytes(b"")
         except OSError as error:
             raise OutputError(f"{self.destination}: cannot create the output folder: {error.strerror or error}") from None
         self.files: Dict[str, int] = {}
@@ -140,7 +163,7 @@ class StagedOutput:
         """Where output `relative` is written in the staging folder (its folder created); OutputError if it
         is no path inside the destination or a name the run keeps for itself."""
         inside(self.destination, relative, "output file")
-        if relative in (REPORT_NAME, _REPLACED_REPORT_NAME):
+        if relative in (REPORT_NAME, _REPLACED_REPORT_NAME, _STAGING_MARKER):
             raise OutputError(f"{self.destination}: '{relative}' is a name the run keeps for itself")
         path = inside(self.staging, relative, "output file")
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -156,10 +179,13 @@ class StagedOutput:
         removed. Returns the report as written.
         """
         replaced = self.destination / _REPLACED_REPORT_NAME
+        inputs = list(inputs)
+        check_not_inputs(self.destination, [*self.files, REPORT_NAME], inputs)
         previous = read_report(self.destination) or _read_json(replaced) or {}
         report = dict(report, outputs=dict(sorted(self.files.items())),
                       output_sha256=dict(sorted(self.digests.items())))
         try:
+            (self.staging / _STAGING_MARKER).unlink()  # the folder becomes (or fills) the destination
             (self.staging / REPORT_NAME).write_text(json.dumps(report, indent=1))
             stale = _provably_written(self.destination, previous, set(self.files), inputs)
             if not (self.swapping and self._swap(stale)):
@@ -197,8 +223,12 @@ class StagedOutput:
             os.replace(self.destination / REPORT_NAME, replaced)
         for relative in self.files:
             target = self.destination / relative
-            target.parent.mkdir(parents=True, exist_ok=True)
-            os.replace(self.staging / relative, target)
+            try:
+                target.parent.mkdir(parents=True, exist_ok=True)
+                os.replace(self.staging / relative, target)
+            except OSError as error:
+                raise OutputError(f"{target}: cannot move this output into place: {error.strerror or error} (the folder "
+                                  f"has no report.json until a run completes)") from None
         for path in stale:
             path.unlink()
         os.replace(self.staging / REPORT_NAME, self.destination / REPORT_NAME)
@@ -267,10 +297,14 @@ def _file_sha256(path: Path) -> str:
 
 
 def _remove_abandoned_staging(destination: Path) -> None:
-    """Delete staging folders in `destination` left by processes that no longer run."""
+    """Delete staging folders in `destination` left by processes that no longer run: a real folder
+    (not a link) named like one, holding the marker file as a regular file."""
     for folder in destination.glob(f"{_STAGING_PREFIX}*"):
         pid = folder.name[len(_STAGING_PREFIX):].split("-")[0]
-        if pid.isdigit() and not _process_alive(int(pid)):
+        if not pid.isdigit() or folder.is_symlink() or not (folder / _STAGING_MARKER).is_file() \
+                or (folder / _STAGING_MARKER).is_symlink():
+            continue
+        if not _process_alive(int(pid)):
             shutil.rmtree(folder, ignore_errors=True)
 
 

@@ -17,8 +17,8 @@ def blend_to_file(inputs: Sequence, weights: Sequence[float], out, feature_space
     """
     import meshik
     from meshik.export.draco import animation_grid, encode_frame
-    from meshik.inputs.meshio import load_example_set, save_mesh
-    from meshik.outputs.staging import check_writable
+    from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
+    from meshik.outputs.staging import check_not_inputs, check_writable
 
     inputs = [Path(p) for p in inputs]
     if len(inputs) == 1 and inputs[0].suffix.lower() == ".json":
@@ -33,15 +33,20 @@ def blend_to_file(inputs: Sequence, weights: Sequence[float], out, feature_space
         raise PipelineError("blend needs a constraint file, or the rest mesh followed by at least one example")
     if len(weights) != len(examples):
         raise PipelineError(f"{len(weights)} weights given for {len(examples)} examples: give one weight per example")
+    out = Path(out)
+    extension = out.suffix.lower().lstrip(".")
+    if extension != "drc" and not (extension.isalnum() and saveable_format(extension)):
+        raise OutputError(f"{out}: unknown output format {out.suffix or '(no extension)'!r}: use .drc or a mesh format "
+                          "pymeshlab writes (.ply, .obj, .off, .stl, ...)")
+    check_writable(out.parent)
+    check_not_inputs(out.parent, [out.name], [*inputs, rest, *examples])
     meshes = load_example_set(rest, examples)
     example_set = meshik.ExampleSet(meshes.rest, meshes.faces, list(meshes.examples))
     try:
         vertices = np.asarray(example_set.blend(np.asarray(weights, dtype=float), feature_space=feature_space or "nonlinear"))
     except meshik.InputError as error:
         raise PipelineError(f"weights {', '.join(map(str, weights))}: {error}") from None
-    out = Path(out)
-    check_writable(out.parent)
-    if out.suffix.lower() == ".drc":
+    if extension == "drc":
         data = encode_frame(vertices, meshes.faces, np.arange(len(vertices)), animation_grid(vertices))
         write = lambda temporary: temporary.write_bytes(data)  # noqa: E731
     else:

@@ -84,6 +84,15 @@ class ExampleSetCache:
         with self._lock:
             return sum(e.estimated_bytes() for e in self._entries.values())
 
+    def release(self, wanted: int) -> int:
+        """Drop least recently used entries until their estimates add up to `wanted` bytes (or none
+        is left); returns the estimated bytes dropped."""
+        dropped = 0
+        with self._lock:
+            while self._entries and dropped < wanted:
+                dropped += self._entries.popitem(last=False)[1].estimated_bytes()
+        return dropped
+
     def _keep(self, key: str, entry: _Entry) -> None:
         """Store an entry, dropping the least recently used ones to stay within max_bytes."""
         size = entry.estimated_bytes()
