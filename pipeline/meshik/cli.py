@@ -8,6 +8,8 @@ import threading
 from pathlib import Path
 from typing import List, Optional
 
+from meshik import __version__
+
 
 _FORMAT_HELP = ("comma-separated output formats: drc (Draco per frame, edgebreaker, original vertex ids kept), "
                 "glb (one glTF: the rest mesh, one morph target per frame and an animation; see --glb), and any mesh "
@@ -84,6 +86,7 @@ def _parser() -> argparse.ArgumentParser:
     parser = _OneLineParser(
         prog="meshik", description="Mesh-based inverse kinematics: pose a mesh from handle targets within the space "
                                    "of its example poses, and write the animation as compressed assets.")
+    parser.add_argument("--version", action="version", version=f"meshik {__version__}")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND", required=True)
 
     pose = commands.add_parser("pose", help="pose every frame of one constraint file",
