@@ -46,8 +46,8 @@ def main() -> int:
 def write_shots(horse: pathlib.Path, gallop: pathlib.Path, folder: pathlib.Path, count: int):
     """`count` constraint files following the gallop (12 tracked vertices), shot k starting at frame k."""
     from bench_pipeline import horse_files
-    from meshik.meshio import load_mesh
-    from meshik.tracking import farthest_point_handles, tracking_document
+    from meshik.inputs.meshio import load_mesh
+    from meshik.inputs.tracking import farthest_point_handles, tracking_document
 
     folder.mkdir(parents=True)
     rest_path, examples = horse_files(horse)
@@ -98,7 +98,7 @@ def run_all(shots, scratch: pathlib.Path) -> None:
 
 def run_plain(shots, out: pathlib.Path, cache_mb: int):
     """(wall seconds, seconds inside the jobs) of run_job called in this process for every shot."""
-    from meshik import batch_job
+    from meshik.batch import job as batch_job
 
     batch_job._cache = None  # a fresh cache, as a fresh worker has
     start = time.perf_counter()

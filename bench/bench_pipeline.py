@@ -56,8 +56,8 @@ def horse_files(horse: pathlib.Path):
 def gallop_constraints(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Path) -> pathlib.Path:
     """Writes scratch/gallop.json: the gallop's frames tracked by 12 farthest-point handle vertices
     of horse-poses' rest mesh, horse-poses' examples; returns its path."""
-    from meshik.meshio import load_mesh
-    from meshik.tracking import farthest_point_handles, tracking_document
+    from meshik.inputs.meshio import load_mesh
+    from meshik.inputs.tracking import farthest_point_handles, tracking_document
 
     rest_path, example_paths = horse_files(horse)
     rest, _ = load_mesh(rest_path)
@@ -69,8 +69,8 @@ def gallop_constraints(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathl
 
 def bench_gallop(horse: pathlib.Path, gallop: pathlib.Path, scratch: pathlib.Path) -> bool:
     """Table 1; returns whether the end-to-end time is under the floor."""
-    from meshik import constraints
-    from meshik.meshio import load_example_set
+    from meshik.inputs import constraints
+    from meshik.inputs.meshio import load_example_set
     from meshik.pipeline import pose_job
 
     path = gallop_constraints(horse, gallop, scratch)
@@ -122,9 +122,9 @@ def core_solve_times(meshes, resolved) -> float:
 
 def bench_simplifiers(horse: pathlib.Path) -> None:
     """Table 2: fast vs openmesh at two targets."""
-    from meshik.meshio import load_example_set, surface_distance
-    from meshik.simplify import simplify
-    from meshik.tracking import farthest_point_handles
+    from meshik.inputs.meshio import load_example_set, surface_distance
+    from meshik.posing.simplify import simplify
+    from meshik.inputs.tracking import farthest_point_handles
 
     rest_path, example_paths = horse_files(horse)
     meshes = load_example_set(rest_path, example_paths)

@@ -11,7 +11,7 @@ import statistics
 import time
 
 import meshik
-from meshik.meshio import load_example_set
+from meshik.inputs.meshio import load_example_set
 
 REPEATS = 5
 SETS = {"horse": "horse-poses", "elephant": "elephant-poses"}

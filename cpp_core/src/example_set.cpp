@@ -9,6 +9,7 @@
 #include "gradient_operator.h"
 #include "input_validation.h"
 #include "locality_order.h"
+#include "meshik/thread_limit.h"
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
@@ -102,7 +103,9 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     example_pointers.push_back(internal_examples.back().data());
   }
   clock.lap("locality order");
-  if (threads < 0) throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(threads));
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                     std::to_string(threads));
   const int* triangles = impl.triangles.data();
   impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
   impl.system_row_of_vertex.assign(rest.num_vertices, -1);
@@ -161,7 +164,7 @@ int ExampleSet::num_triangles() const { return impl_->num_triangles; }
 int ExampleSet::num_examples() const { return impl_->num_examples; }
 FeaturePrecision ExampleSet::feature_precision() const { return impl_->features.precision; }
 
-std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space) const {
+std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space, Blend blend) const {
   const Impl& impl = *impl_;
   const int k = impl.num_examples;
   if (k > 0 && weights == nullptr) throw InputError("no weights given to blend");
@@ -172,7 +175,7 @@ std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace featur
   // Anchors at the origin fix each component's translation; shift it afterwards.
   const std::vector<double> origin(3 * impl.blend_system->handles().size(), 0.0);
   EvaluationBuffers buffers;
-  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data(), buffers);
+  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data(), buffers, 1, blend);
   PoseEvaluation pose;
   evaluator.evaluate(weights, false, pose);
 

@@ -1,6 +1,8 @@
 // Input checks with messages that name the offending vertex, triangle, example or handle.
 #include "input_validation.h"
 
+#include "meshik/thread_limit.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -115,11 +117,16 @@ void validate_options(const SolverOptions& options) {
   if (!(std::isfinite(options.tolerance) && options.tolerance >= 0.0))
     throw InputError("tolerance must be finite and >= 0, got " +
                      std::to_string(options.tolerance));
-  if (options.threads < 0)
-    throw InputError("threads must be 0 (all cores) or a positive count, got " + std::to_string(options.threads));
+  if (options.threads < 0 || options.threads > kMaxThreads)
+    throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
+                     std::to_string(options.threads));
   if (options.max_iterations < 0)
     throw InputError("max_iterations must be >= 0, got " +
                      std::to_string(options.max_iterations));
+  if (options.regions < 1 && options.regions != kAutomaticRegions)
+    throw InputError("regions must be a count >= 1 or automatic, got " + std::to_string(options.regions));
+  if (!(std::isfinite(options.region_smoothness) && options.region_smoothness >= 0.0))
+    throw InputError("region_smoothness must be finite and >= 0, got " + std::to_string(options.region_smoothness));
 }
 
 void validate_finite(const double* values, int count, const char* what) {

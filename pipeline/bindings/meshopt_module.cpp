@@ -53,8 +53,23 @@ nb::bytes encode_vertex_buffer(ByteRows rows) {
   return nb::bytes(reinterpret_cast<const char*>(encoded.data()), encoded.size());
 }
 
-// count by size bytes decoded from encode_vertex_buffer's output; ValueError when malformed.
+// The most bytes one decode may produce (meshoptimizer asserts, and would abort the process, on
+// sizes it does not support; a count from a hostile file must not allocate without bound).
+constexpr size_t kMaxDecodedBytes = size_t{1} << 31;
+
+// ValueError unless count elements of `size` bytes fit in kMaxDecodedBytes.
+void check_decoded_size(size_t count, size_t size) {
+  if (size != 0 && count > kMaxDecodedBytes / size)
+    throw nb::value_error(("decoding " + std::to_string(count) + " elements of " + std::to_string(size) +
+                           " bytes would take more than " + std::to_string(kMaxDecodedBytes) + " bytes").c_str());
+}
+
+// count by size bytes decoded from encode_vertex_buffer's output; ValueError when malformed
+// (size: a multiple of 4 up to 256, as meshoptimizer requires).
 nb::object decode_vertex_buffer(nb::bytes data, size_t count, size_t size) {
+  if (size == 0 || size % 4 != 0 || size > 256)
+    throw nb::value_error(("vertex size " + std::to_string(size) + " is not a multiple of 4 up to 256").c_str());
+  check_decoded_size(count, size);
   std::vector<std::uint8_t> rows(count * size);
   const int status = meshopt_decodeVertexBuffer(rows.data(), count, size,
                                                 reinterpret_cast<const unsigned char*>(data.c_str()), data.size());
@@ -76,6 +91,9 @@ nb::bytes encode_index_buffer(Indices indices, size_t vertex_count) {
 
 // count uint32 indices decoded from encode_index_buffer's output; ValueError when malformed.
 nb::object decode_index_buffer(nb::bytes data, size_t count) {
+  if (count % 3 != 0)
+    throw nb::value_error(("index count " + std::to_string(count) + " is not whole triangles").c_str());
+  check_decoded_size(count, 4);
   std::vector<std::uint32_t> indices(count);
   const int status = meshopt_decodeIndexBuffer(indices.data(), count, 4,
                                                reinterpret_cast<const unsigned char*>(data.c_str()), data.size());

@@ -8,6 +8,8 @@ import threading
 from pathlib import Path
 from typing import List, Optional
 
+from meshik import __version__
+
 
 _FORMAT_HELP = ("comma-separated output formats: drc (Draco per frame, edgebreaker, original vertex ids kept), "
                 "glb (one glTF: the rest mesh, one morph target per frame and an animation; see --glb), and any mesh "
@@ -43,10 +45,16 @@ def main(argv: Optional[List[str]] = None) -> int:
 
 
 def _print_error(message: str) -> None:
-    """Print `meshik: error: message` on one line of stderr; file names that are not valid UTF-8
-    are shown with backslash escapes rather than failing to print."""
-    line = f"meshik: error: {message}".encode("utf-8", "backslashreplace").decode("utf-8")
-    print(line, file=sys.stderr)
+    """Print `meshik: error: message` on one line of stderr; control characters and file names
+    that are not valid UTF-8 are shown as backslash escapes (meshik.terminal_text)."""
+    _print_line(f"meshik: error: {message}", sys.stderr)
+
+
+def _print_line(text: str, stream) -> None:
+    """Print `text` as one inert line on `stream` (control characters escaped: one_line)."""
+    from meshik.terminal_text import one_line
+
+    print(one_line(text), file=stream, flush=True)
 
 
 def _stop_on_sigterm():
@@ -63,11 +71,22 @@ def _stop_on_sigterm():
     return signal.signal(signal.SIGTERM, interrupt)
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """An ArgumentParser whose usage errors are one line on stderr (escaped as every error line),
+    naming the command and pointing at its --help, with exit status 2."""
+
+    def error(self, message: str):
+        """Print `<prog>: error: message (see <prog> --help)` and exit with status 2."""
+        _print_line(f"{self.prog}: error: {message} (see {self.prog} --help)", sys.stderr)
+        self.exit(2)
+
+
 def _parser() -> argparse.ArgumentParser:
     """The argument parser with its sub-commands."""
-    parser = argparse.ArgumentParser(
+    parser = _OneLineParser(
         prog="meshik", description="Mesh-based inverse kinematics: pose a mesh from handle targets within the space "
                                    "of its example poses, and write the animation as compressed assets.")
+    parser.add_argument("--version", action="version", version=f"meshik {__version__}")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND", required=True)
 
     pose = commands.add_parser("pose", help="pose every frame of one constraint file",
@@ -75,6 +94,12 @@ def _parser() -> argparse.ArgumentParser:
                                            "report.json into DIR. Skips the job when DIR already holds its complete outputs.")
     pose.add_argument("constraints", metavar="CONSTRAINTS", help="constraint file (JSON, format meshik-constraints version 1)")
     _job_options(pose)
+    pose.add_argument("--blend", choices=("affine", "free"), default=None,
+                      help="override the constraint file's blend of the examples' stretches: affine (tied to the "
+                           "rest pose, default) or free (the paper's)")
+    pose.add_argument("--regions", type=_region_count, default=None, metavar="N",
+                      help="override the constraint file's regions: spatially varying weights over N regions "
+                           "clustered from the examples, or auto (1: one weight vector, the default)")
     pose.set_defaults(run=_run_pose)
 
     batch = commands.add_parser("batch", help="pose many constraint files in parallel on Dask",
@@ -124,7 +149,7 @@ def _parser() -> argparse.ArgumentParser:
                                            "orbit controls and a frame slider, beside the contact sheet and report "
                                            "(three.js served locally from the pinned npm packages; works offline).")
     view.add_argument("folder", type=Path, metavar="OUT", help="an output folder of pose, batch or the demo")
-    view.add_argument("--port", type=_non_negative_int, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
+    view.add_argument("--port", type=_port, default=8000, help="port on 127.0.0.1 (0: any free one; default 8000)")
     view.set_defaults(run=_run_view)
 
     validate = commands.add_parser("validate", help="check constraint files and print every problem",
@@ -139,7 +164,12 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
     """Options shared by `pose` and `batch`."""
     parser.add_argument("--out", "-o", required=True, type=Path, metavar="DIR", help="output folder")
     parser.add_argument("--simplify", type=_simplify_target, metavar="N",
-                        help="simplify before posing: N triangles (an integer) or the fraction of triangles to keep (e.g. 0.25)")
+                        help="write a lighter animation of N triangles (an integer) or the fraction of triangles to keep "
+                             "(e.g. 0.25): every frame is posed at full resolution, then simplified as the examples were, "
+                             "so it moves like the full animation")
+    parser.add_argument("--simplify-first", action="store_true",
+                        help="with --simplify: pose the simplified examples instead (faster per frame, but the "
+                             "simplified mesh may choose other example weights: a limb can move differently)")
     parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
                         help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
                              "with handles locked and the error summed over all poses (default fast)")
@@ -148,10 +178,13 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
     parser.add_argument("--quantization-bits", type=_positive_int, default=14, metavar="B",
                         help="Draco position quantisation bits, one grid for the whole animation (default 14)")
-    parser.add_argument("--glb", dest="glb", choices=("meshopt", "quantized", "draco"), default="meshopt",
-                        help="the .glb: meshopt (quantized positions and morph targets, EXT_meshopt_compression; "
-                             "default), quantized (KHR_mesh_quantization only: Blender before 5.2 and readers without "
-                             "a meshopt decoder) or draco (Draco base mesh, float32 morph targets)")
+    parser.add_argument("--glb", dest="glb", choices=("quantized", "meshopt", "draco"), default="quantized",
+                        help="the .glb: quantized (default: KHR_mesh_quantization; opens in Blender, three.js, "
+                             "Babylon.js and is fully checked by the Khronos validator), meshopt (opt-in: the same "
+                             "compressed with EXT_meshopt_compression, about 1/3 the bytes; needs a meshopt decoder: "
+                             "three.js, Babylon.js, glTF-Transform; Blender 5.0.1 refuses it, its importer reads it "
+                             "from 5.2) or draco (Draco base mesh, float32 morph targets; Blender, and three.js or "
+                             "Babylon.js with a Draco decoder). Morph weights stay in [0, 1] in every variant")
     parser.add_argument("--position-bits", type=_positive_int, default=14, metavar="N",
                         help="bits of the meshopt / quantized .glb's position grid, one grid for the whole animation "
                              "(1 to 15, default 14)")
@@ -173,9 +206,10 @@ def _run_pose(args) -> int:
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
                       force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                      glb_targets=args.glb_targets)
+                      glb_targets=args.glb_targets, simplify_first=args.simplify_first, blend=args.blend,
+                      regions=args.regions)
     if report.get("skipped") and not args.quiet:
-        print(f"{args.out}: outputs already complete (use --force to redo)", file=sys.stderr)
+        _print_line(f"{args.out}: outputs already complete (use --force to redo)", sys.stderr)
     return 0
 
 
@@ -196,16 +230,16 @@ def _run_batch(args) -> int:
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
                          threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                         glb_targets=args.glb_targets)
+                         glb_targets=args.glb_targets, simplify_first=args.simplify_first)
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
-        print(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", file=sys.stderr)
+        _print_line(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", sys.stderr)
     return 1 if failed else 0
 
 
 def _run_blend(args) -> int:
     """`meshik blend`: write the blended mesh; 0 on success."""
-    from meshik.blending import blend_to_file
+    from meshik.posing.blending import blend_to_file
 
     blend_to_file(args.inputs, args.weights, args.out, feature_space=args.feature_space)
     return 0
@@ -213,17 +247,17 @@ def _run_blend(args) -> int:
 
 def _run_info(args) -> int:
     """`meshik info`: one summary per file (text or JSON); 1 when any file could not be read."""
-    from meshik.file_info import describe_files
+    from meshik.inputs.file_info import describe_files
 
     summaries, errors = describe_files(args.files)
     if args.json:
         print(json.dumps(summaries, indent=1))
     else:
         for summary in summaries:
-            print(summary["file"])
+            _print_line(summary["file"], sys.stdout)
             for key, value in summary.items():
                 if key != "file":
-                    print(f"  {key}: {value}")
+                    _print_line(f"  {key}: {value}", sys.stdout)
     for error in errors:
         _print_error(error)
     return 1 if errors else 0
@@ -231,21 +265,22 @@ def _run_info(args) -> int:
 
 def _run_validate(args) -> int:
     """`meshik validate`: "<file>: OK" or each problem of each file; 1 when any file has a problem."""
-    from meshik.validation import validate_files
+    from meshik.inputs.validation import validate_files
 
     results = validate_files(args.files)
     for path, problems in zip(args.files, results):
-        print(f"{path}: OK" if not problems else "\n".join(problems))
+        for line in [f"{path}: OK"] if not problems else problems:
+            _print_line(line, sys.stdout)
     return 1 if any(results) else 0
 
 
 def _run_view(args) -> int:
     """`meshik view`: serve the folder's preview until Ctrl+C; 0 when stopped."""
-    from meshik.view_server import preview_server
+    from meshik.preview.server import preview_server
 
     server = preview_server(args.folder, args.port)
     host, port = server.server_address[:2]
-    print(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", flush=True)
+    _print_line(f"previewing {args.folder} at http://{host}:{port}/ (Ctrl+C to stop)", sys.stdout)
     try:
         server.serve_forever()
     except KeyboardInterrupt:
@@ -273,12 +308,33 @@ def _thread_count(text: str) -> int:
     return value
 
 
+def _port(text: str) -> int:
+    """argparse type: a TCP port from 0 (any free one) to 65535."""
+    value = _non_negative_int(text)
+    if value > 65535:
+        raise argparse.ArgumentTypeError(f"expected a port from 0 to 65535, got {text}")
+    return value
+
+
 def _non_negative_int(text: str) -> int:
     """argparse type: an integer >= 0."""
     value = int(text)
     if value < 0:
         raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text}")
     return value
+
+
+def _region_count(text: str):
+    """argparse type for --regions: a count >= 1 or "auto"."""
+    if text == "auto":
+        return text
+    try:
+        count = int(text)
+    except ValueError:
+        count = 0
+    if count < 1:
+        raise argparse.ArgumentTypeError(f"expected a region count >= 1 or auto, got {text!r}")
+    return count
 
 
 def _simplify_target(text: str):

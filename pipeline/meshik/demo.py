@@ -13,13 +13,13 @@ from typing import Any, Dict, List
 
 import numpy as np
 
-from meshik.contact_sheet import contact_sheet
-from meshik.export_draco import decode
+from meshik.preview.contact_sheet import contact_sheet
+from meshik.export.draco import decode
 from meshik.pipeline import pose_job
-from meshik.viewer_site import write_viewer
+from meshik.preview.site import write_viewer
 
 ROOT = Path(__file__).resolve().parents[2]
-# (sample, pose_job options): the limb is simplified first, the small sets are posed as they are.
+# (sample, pose_job options): the limb's animation is simplified, the small sets are posed as they are.
 DEMO_JOBS = [
     ("limb", {"simplify": 0.5, "simplifier": "fast"}),
     ("flag", {}),

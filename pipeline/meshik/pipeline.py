@@ -1,41 +1,47 @@
-"""One job: constraint file -> example set -> (simplify) -> pose every frame -> compressed outputs.
+"""One job: constraint file -> example set -> pose every frame (-> simplify) -> compressed outputs.
 
     report = pose_job("shot.json", "out/shot", simplify=2000, formats=("drc", "glb", "ply"))
 
 Outputs in the job folder: frames/<frame>.drc (Draco, edgebreaker, one quantisation grid, the
-"original_id" attribute), <job>.glb (morph targets + animation; glb="meshopt": positions and deltas
-quantized on one position_bits grid and EXT_meshopt_compression, "quantized": the same without
-meshopt, both with a low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
+"original_id" attribute), <job>.glb (morph targets + animation, weights in [0, 1]; glb="quantized",
+the default: positions and deltas quantized on one position_bits grid, read by every reader tested;
+"meshopt": the same with EXT_meshopt_compression, which Blender 5.0.1 refuses; both with a
+low-rank morph basis (glb_targets="basis") or one target per frame ("frames");
 "draco": a Draco base mesh and one float32 target per frame),
 frames/<frame>.<ext> for any format pymeshlab writes, vertex_ids.txt (original vertex id of each
-output vertex, when simplified), and report.json (written last). Nothing is created when the
+output vertex, when simplified), and report.json (written last). A simplified job poses at full
+resolution and simplifies every posed frame as it simplified the example set (simplify_first=True:
+poses the simplified example set instead, faster but it may move differently). Nothing is created when the
 input is bad; an interrupted job leaves no file under its final name; a job whose outputs are
 complete for the same inputs and options is skipped.
 """
+import dataclasses
 import hashlib
 import json
 import sys
 import time
 from pathlib import Path
-from typing import Any, Callable, Dict, Optional, Sequence, TextIO, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 
-from meshik import constraints as constraint_files
+from meshik.inputs import constraints as constraint_files
 from meshik.errors import PipelineError
-from meshik.export_draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
-from meshik.export_gltf import animation_glb, glb_size_problem
-from meshik.export_gltf_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
-from meshik.output_errors import OutputErrors
-from meshik.meshio import load_example_set, save_mesh, saveable_format
-from meshik.posing import PosedAnimation, pose_animation
+from meshik.export.draco import DEFAULT_QUANTIZATION_BITS, animation_grid, encode_frame
+from meshik.export.glb_draco import animation_glb
+from meshik.export.glb_layout import glb_size_problem
+from meshik.export.glb_quantized import GLB_TARGETS, MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.output_errors import OutputErrors
+from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
+from meshik.posing.animation import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
-from meshik.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes
-from meshik.staging import StagedOutput, check_writable, is_complete, read_report
+from meshik.terminal_text import one_line
+from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_animation
+from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
 DEFAULT_FORMATS = ("drc", "glb")
-GLB_VARIANTS = ("meshopt", "quantized", "draco")
+GLB_VARIANTS = ("quantized", "meshopt", "draco")
 DEFAULT_POSITION_BITS = 14
 GENERATOR = "MeshIK pipeline"
 
@@ -44,22 +50,27 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              formats: Sequence[str] = DEFAULT_FORMATS, feature_space: Optional[str] = None, quiet: bool = False,
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
-             glb: str = "meshopt", position_bits: int = DEFAULT_POSITION_BITS,
-             glb_targets: str = "basis", within=None) -> Dict[str, Any]:
+             glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
+             glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
+             regions: Union[None, int, str] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
-              or None for full resolution; simplifier: "fast" or "openmesh";
+              or None for full resolution; simplifier: "fast" or "openmesh"; by default every frame is
+              posed at full resolution, then simplified as the example set was (the simplified animation
+              is the simplification of the full one); simplify_first: pose the simplified example set
+              instead (faster per frame, but its weights, and so its motion, may differ);
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
+    blend / regions: override the file's ("affine" or "free"; a region count or "auto");
     force: run even when out_dir already holds the complete outputs of the same job;
-    example_cache: an ExampleSetCache (meshik.example_cache) to take the meshes and features from;
+    example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
-    glb: the .glb variant ("meshopt", "quantized" or "draco"); position_bits: the grid of the
+    glb: the .glb variant ("quantized", "meshopt" or "draco"; meshik.export.glb_readers says who reads each); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
     within: a folder that contains out_dir and that the run owns as a whole (a batch's --out): out_dir
-            is then replaced in one folder swap (meshik.staging).
+            is then replaced in one folder swap (meshik.outputs.staging).
     The returned report has "skipped": True when the job was already complete.
     Raises PipelineError (ConstraintError, MeshFileError, OutputError) or meshik.InputError.
     """
@@ -76,11 +87,16 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if not 1 <= position_bits <= MAX_POSITION_BITS:
         raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
+    _check_choice("blend", blend, constraint_files.BLENDS + (None,))
     solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
+    if blend:
+        solver_options["blend"] = blend
+    if regions is not None:
+        solver_options["regions"] = regions
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
-                  (glb, position_bits, glb_targets) if "glb" in formats else None)
+                  (glb, position_bits, glb_targets) if "glb" in formats else None, simplify_first)
     if not force and is_complete(out_dir, key):
         return dict(read_report(out_dir), skipped=True)
 
@@ -93,25 +109,35 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     say(f"{len(meshes.rest)} vertices, {len(meshes.faces)} triangles, {len(meshes.examples)} examples, "
         f"{len(resolved.handles)} handle vertices, {len(resolved.frame_names)} frames")
 
-    simplified = None
-    if simplify is not None:
-        target = _target_triangles(simplify, len(meshes.faces))
-        simplified = simplify_meshes(meshes, target, resolved.handles, simplifier)
-        say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
+    target = _target_triangles(simplify, len(meshes.faces)) if simplify is not None else None
+    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier) \
+        if target is not None and simplify_first else None
+    pose_meshes = simplified.meshes if simplified is not None else meshes
+    if target is None or simplify_first:  # else known once the frames are simplified
+        _check_glb_size(constraints_path, formats, len(resolved.frame_names), pose_meshes.rest)
     clock.lap("simplify")
-    posed_meshes = simplified.meshes if simplified is not None else meshes
     handles, kept = remap_handles(simplified, resolved.handles)
-    too_large = glb_size_problem(len(resolved.frame_names), len(posed_meshes.rest)) if "glb" in formats else None
-    if too_large:
-        raise PipelineError(f"{constraints_path}: {too_large}: leave glb out of --format or split the animation")
+    inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
+    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, target is not None), inputs)
 
+    pose_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
-        posed = pose_animation(posed_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
+        posed = pose_animation(pose_meshes, handles, resolved.targets[:, kept],
+                               _mesh_solver_options(solver_options, pose_ids, len(meshes.rest), constraints_path),
+                               on_frame=advance,
                                context=str(constraint_set.rest), features=features if simplified is None else None,
                                threads=threads,
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
-
+    if target is not None and not simplify_first:
+        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier)
+        posed = dataclasses.replace(posed, vertices=frames)
+        handles, kept = remap_handles(simplified, resolved.handles)
+        _check_glb_size(constraints_path, formats, len(resolved.frame_names), simplified.meshes.rest)
+        clock.lap("simplify_frames")
+    if simplified is not None:
+        say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
+    posed_meshes = simplified.meshes if simplified is not None else meshes
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     everything = np.concatenate([posed.vertices, posed_meshes.rest[None]])
     grid = animation_grid(everything, quantization_bits)
@@ -128,13 +154,20 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
                 simplified is not None, grid, constraint_set.fps, formats, advance, (glb, glb_grid, glb_targets), errors)
         clock.lap("export")
         fit = _handle_fit(posed.vertices, simplified, resolved.handles, resolved.targets)
-        report = _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved,
-                         posed, fit, grid, clock.laps)
+        report = _report(name, key, constraint_set, meshes, simplified, (simplifier, simplify_first), solver_options,
+                         resolved, posed, fit, grid, clock.laps)
         report["compressed_outputs"] = errors.report()
-        report = staged.commit(report, inputs=(constraints_path, meshes.rest_path, *meshes.example_paths))
+        report = staged.commit(report, inputs=inputs)
     say(f"done: {len(resolved.frame_names)} frames, worst handle fit error {fit.max():.3g}, "
         f"{sum(report['outputs'].values()) / 1e6:.2f} MB in {out_dir}")
     return dict(report, skipped=False)
+
+
+def _check_glb_size(source: Path, formats: Tuple[str, ...], frames: int, vertices: np.ndarray) -> None:
+    """PipelineError when a .glb is asked for and `frames` frames of these #V by 3 vertices cannot be one."""
+    too_large = glb_size_problem(frames, len(vertices)) if "glb" in formats else None
+    if too_large:
+        raise PipelineError(f"{source}: {too_large}: leave glb out of --format or split the animation")
 
 
 def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
@@ -153,17 +186,29 @@ def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
     return parsed
 
 
+def _mesh_solver_options(solver_options: Dict[str, Any], vertex_ids: np.ndarray, num_vertices: int,
+                         source) -> Dict[str, Any]:
+    """solver_options for the posed mesh: vertex-group regions (name -> rest vertex indices) become
+    meshik.Solver's array of region ids, taken at the posed vertices' rest ids (vertex_ids)."""
+    regions = solver_options.get("regions")
+    if not isinstance(regions, dict):
+        return solver_options
+    ids = constraint_files.region_vertex_groups(regions, num_vertices, source)
+    return dict(solver_options, regions=ids[np.asarray(vertex_ids)])
+
+
 def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict[str, Any], simplify, simplifier: str,
-            formats: Tuple[str, ...], quantization_bits: int, glb_options=None) -> str:
+            formats: Tuple[str, ...], quantization_bits: int, glb_options=None, simplify_first: bool = False) -> str:
     """A hash of everything a job's outputs depend on: the constraint file's bytes, the size and
     modification time of every mesh file, and the options (glb_options: the .glb's variant and
-    position bits and targets, None without a .glb)."""
+    position bits and targets, None without a .glb; simplify_first: counts only when simplified)."""
     meshes = [constraint_set.rest, *constraint_set.examples]
     state = {
         "constraints": hashlib.sha256(constraint_set.source.read_bytes()).hexdigest(),
         "meshes": [[str(p), p.stat().st_size, p.stat().st_mtime_ns] for p in meshes],
         "options": [solver_options, simplify, simplifier if simplify is not None else None, list(formats), quantization_bits]
-                   + ([list(glb_options)] if glb_options is not None else []),
+                   + ([list(glb_options)] if glb_options is not None else [])
+                   + ([{"simplify_first": simplify_first}] if simplify is not None else []),
         "report_version": REPORT_VERSION,
     }
     return hashlib.sha256(json.dumps(state, sort_keys=True, default=str).encode()).hexdigest()
@@ -220,6 +265,15 @@ def _export(staged: StagedOutput, name: str, rest: np.ndarray, faces: np.ndarray
                 staged.write("vertex_ids.txt", "".join(f"{i}\n" for i in vertex_ids).encode())
 
 
+def _output_names(name: str, formats: Tuple[str, ...], frame_names: Sequence[str], simplified: bool) -> List[str]:
+    """Every file a job writes, relative to its folder (report.json included), as _export names them."""
+    names = [REPORT_NAME] + [f"{name}.glb" for fmt in formats if fmt == "glb"]
+    names += [f"frames/{frame}.{fmt}" for fmt in formats if fmt != "glb" for frame in frame_names]
+    if simplified and any(fmt not in DEFAULT_FORMATS for fmt in formats):
+        names.append("vertex_ids.txt")
+    return names
+
+
 def _file_count(formats: Tuple[str, ...], frames: int) -> int:
     """How many files the formats make: one .glb, one file per frame for every other format."""
     return sum(1 if fmt == "glb" else frames for fmt in formats)
@@ -258,16 +312,18 @@ def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndar
                         f"mesh's diagonal: move that frame's targets closer or raise {option}")
 
 
-def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_options, resolved, posed: PosedAnimation,
-            fit: np.ndarray, grid, timings: Dict[str, float]) -> Dict[str, Any]:
-    """The report.json document (without "outputs", which the commit adds)."""
+def _report(name, key, constraint_set, meshes, simplified, simplification: Tuple[str, bool], solver_options, resolved,
+            posed: PosedAnimation, fit: np.ndarray, grid, timings: Dict[str, float]) -> Dict[str, Any]:
+    """The report.json document (without "outputs", which the commit adds); simplification: (simplifier,
+    simplify_first)."""
+    simplifier, simplify_first = simplification
     frames = [{"name": frame, "weights": posed.weights[k].tolist(), "iterations": int(posed.iterations[k]),
                "residual": float(posed.residuals[k]), "converged": bool(posed.converged[k]),
                "inverted_triangles": int(posed.inverted_triangles[k]),
                "solve_seconds": float(posed.solve_seconds[k]),
                "handle_fit_error": {"max": float(fit[k].max()), "rms": float(np.sqrt(np.mean(fit[k] ** 2)))}}
               for k, frame in enumerate(resolved.frame_names)]
-    posed_count = len(simplified.meshes.rest) if simplified is not None else len(meshes.rest)
+    posed_count = len(simplified.meshes.rest) if simplified is not None and simplify_first else len(meshes.rest)
     return {
         "report_version": REPORT_VERSION,
         "job": name,
@@ -276,7 +332,8 @@ def _report(name, key, constraint_set, meshes, simplified, simplifier, solver_op
         "input": {"rest": str(meshes.rest_path), "examples": [str(p) for p in meshes.example_paths],
                   "vertices": len(meshes.rest), "triangles": len(meshes.faces)},
         "simplification": None if simplified is None else {
-            "simplifier": simplifier, "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
+            "simplifier": simplifier, "posed": "simplified example set" if simplify_first else "full resolution",
+            "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
             "snapped_vertices": simplified.snapped,
             "merged_handle_vertices": int(len(resolved.handles) - len(np.unique(simplified.vertex_map[resolved.handles])))},
         "solver": dict(solver_options, handle_vertices=len(resolved.handles), posed_vertices=posed_count),
@@ -316,4 +373,4 @@ class _Announcer:
     def __call__(self, message: str) -> None:
         """Print one line for this job (nothing when quiet)."""
         if not self.quiet:
-            print(f"{self.name}: {message}", file=self.stream or sys.stderr, flush=True)
+            print(one_line(f"{self.name}: {message}"), file=self.stream or sys.stderr, flush=True)

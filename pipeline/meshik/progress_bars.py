@@ -9,6 +9,8 @@ from typing import Callable, Iterator, Optional, TextIO
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TaskProgressColumn, TextColumn, TimeElapsedColumn
 
+from meshik.terminal_text import one_line
+
 _LOG_WIDTH = 160
 
 
@@ -24,17 +26,19 @@ def console_for(stream: Optional[TextIO]) -> Console:
 
 
 def say(console: Console, line: str) -> None:
-    """Print one plain line (no markup interpretation) above any live display."""
-    console.print(line, markup=False)
+    """Print one plain line (no markup interpretation, control characters escaped: one_line) above
+    any live display."""
+    console.print(one_line(line), markup=False)
 
 
 @contextmanager
 def stage_progress(label: str, total: int, quiet: bool = False, stream: Optional[TextIO] = None) -> Iterator[Callable[[], None]]:
     """A bar "label  12/48 ━━━━━━━   25% 0:00:01" for a stage of `total` steps; yields advance(),
-    to be called once per step. quiet: no display at all."""
-    progress = Progress(TextColumn("{task.description}"), BarColumn(bar_width=24), MofNCompleteColumn(),
+    to be called once per step. quiet: no display at all. The label is shown as plain text, control
+    characters escaped (one_line)."""
+    progress = Progress(TextColumn("{task.description}", markup=False), BarColumn(bar_width=24), MofNCompleteColumn(),
                         TaskProgressColumn(), TimeElapsedColumn(), console=console_for(stream), disable=quiet)
-    task = progress.add_task(label, total=max(int(total), 1))
+    task = progress.add_task(one_line(label), total=max(int(total), 1))
     with progress:
         yield lambda: progress.advance(task)
         progress.update(task, completed=max(int(total), 1))

@@ -40,7 +40,7 @@ def validate_and_check_no_errors(path: pathlib.Path) -> dict:
 
 def decode_with_draco_decoder(drc: pathlib.Path, scratch: pathlib.Path):
     """(#V by 3 positions, #F by 3 triangles) of a .drc as Google's draco_decoder decodes it (via PLY)."""
-    from meshik.meshio import load_mesh
+    from meshik.inputs.meshio import load_mesh
 
     ply = scratch / (drc.stem + ".decoded.ply")
     subprocess.run([draco_decoder(), "-i", str(drc), "-o", str(ply)], check=True, capture_output=True)

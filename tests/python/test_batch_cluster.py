@@ -15,10 +15,10 @@ from distributed import Client
 
 from dask_processes import LoopbackCluster, assert_all_gone
 from meshik.batch import SUMMARY_NAME
-from meshik.batch_job import KILL_WORKER_VARIABLE
+from meshik.batch.job import KILL_WORKER_VARIABLE
 from meshik.cli import main
 from meshik.pipeline import pose_job
-from meshik.staging import REPORT_NAME
+from meshik.outputs.staging import REPORT_NAME
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 from test_pipeline_batch import no_partial_file
 

@@ -9,7 +9,7 @@ import jsonschema
 import numpy as np
 import pytest
 
-from meshik import constraints
+from meshik.inputs import constraints
 from meshik.cli import main
 from meshik.errors import ConstraintError
 from plugin_helpers import POSE, apply_refused, load_mesh_set

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import meshik
-from meshik.meshio import load_example_set
+from meshik.inputs.meshio import load_example_set
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from meshik import constraints
+from meshik.inputs import constraints
 from meshik.errors import ConstraintError
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]

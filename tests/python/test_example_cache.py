@@ -3,7 +3,7 @@ import shutil
 
 import numpy as np
 
-from meshik.example_cache import ExampleSetCache
+from meshik.posing.example_cache import ExampleSetCache
 from meshik.pipeline import pose_job
 from pipeline_meshes import bend, tube_constraints, write_constraints, write_obj, write_tube_set
 

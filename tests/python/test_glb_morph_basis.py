@@ -4,10 +4,12 @@ every frame decodes (float32, as a viewer mixes the targets) within the grid's r
 import numpy as np
 import pytest
 
-from meshik import export_draco, export_gltf
-from meshik.export_gltf_quantized import BASIS_TOLERANCE, quantized_animation_glb
-from meshik.gltf_container import split_glb
-from meshik.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
+from meshik.export import draco as export_draco
+from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
+from meshik.export.glb_quantized import BASIS_TOLERANCE, quantized_animation_glb
+from meshik.export.glb_container import split_glb
+from meshik.export.morph_basis import MAX_BASIS_FRAMES, low_rank_basis, morphed_positions
 
 
 def sheet(side: int):
@@ -26,9 +28,9 @@ def write_and_read(rest, faces, frames, targets="basis", bits=12):
     names = [f"f{k}" for k in range(len(frames))]
     data = quantized_animation_glb(rest, faces, frames, names, np.arange(len(rest)), grid, 24.0, "t", "test",
                                    targets=targets)
-    read = export_gltf.read_animation_glb(data)
+    read = read_animation_glb(data)
     assert read.frame_names == tuple(names)
-    return read, export_gltf.rows_of_ids(np.arange(len(rest)), read.vertex_ids), grid, split_glb(data)[0]
+    return read, rows_of_ids(np.arange(len(rest)), read.vertex_ids), grid, split_glb(data)[0]
 
 
 def periodic_frames(rest: np.ndarray, count: int, period: int) -> np.ndarray:
@@ -76,8 +78,12 @@ def test_the_basis_reproduces_an_exactly_low_rank_animation_and_bounds_its_searc
     frames = base + np.einsum("kj,jvc->kvc", amounts, modes)
     basis = low_rank_basis(base, frames, BASIS_TOLERANCE)
     assert basis.targets.shape == (2,) + rest.shape and np.abs(basis.targets).max() <= 32767
-    decoded = morphed_positions(base, basis.weights, basis.targets)
-    assert decoded.dtype == np.float32 and np.linalg.norm(decoded - frames, axis=2).max() <= BASIS_TOLERANCE
+    assert 0 <= basis.weights.min() and basis.weights.max() <= 1 and np.ptp(basis.base, axis=0).max() <= 65535
+    stored = basis.base - basis.base.min(axis=0)
+    decoded = morphed_positions(stored, basis.weights, basis.targets)
+    assert decoded.dtype == np.float32
+    decoded = (decoded + basis.base.min(axis=0)) * basis.unit
+    assert np.linalg.norm(decoded - frames, axis=2).max() <= BASIS_TOLERANCE
     many = np.repeat(frames[:1], MAX_BASIS_FRAMES + 1, axis=0)
     assert low_rank_basis(base, many, BASIS_TOLERANCE) is None
 

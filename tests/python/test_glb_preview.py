@@ -1,4 +1,4 @@
-"""The output preview: `make demo`'s index.html served by `meshik view` (meshik.view_server) opened in
+"""The output preview: `make demo`'s index.html served by `meshik view` (meshik.preview.server) opened in
 headless Chromium (Debian's `chromium` through playwright-core, tests/node/preview_check.mjs): it
 loads with no console error, the animation plays, the slider shows a chosen frame, and the contact
 sheet and report are beside it; the server gives nothing outside the folder and its fixed list."""
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from meshik import demo
-from meshik.export_gltf import read_animation_glb
-from meshik.view_server import preview_server, resolve_request
-from meshik.viewer_site import VENDOR_FILES
+from meshik.export.glb_reader import read_animation_glb
+from meshik.preview.server import open_request, preview_server
+from meshik.preview.site import VENDOR_FILES
 from pipeline_clients import ROOT
 
 CHECK = ROOT / "tests" / "node" / "preview_check.mjs"
@@ -81,14 +81,18 @@ def test_server_refuses_paths_outside_the_folder(demo_output, tmp_path):
     outside = tmp_path / "secret.txt"
     outside.write_text("no")
     (demo_output / "link.txt").symlink_to(outside)
+    (demo_output / "linked").symlink_to(tmp_path)
     try:
         for url in ("/../secret.txt", "/%2e%2e/secret.txt", "/bar/../../secret.txt", "/link.txt", "/viewer/../bar",
-                    "/viewer/vendor/three/package.json", "/viewer/vendor/../../../etc/passwd", "/missing.glb"):
-            assert resolve_request(demo_output, url) is None, url
+                    "/viewer/vendor/three/package.json", "/viewer/vendor/../../../etc/passwd", "/missing.glb",
+                    "/linked/secret.txt", "/bar", "/bar/", "/%00"):
+            assert open_request(demo_output, url) is None, url
     finally:
         (demo_output / "link.txt").unlink()
-    kind, path = resolve_request(demo_output, "/bar/report.json?x=1")
-    assert kind == "file" and path == (demo_output / "bar" / "report.json").resolve()
-    kind, html = resolve_request(demo_output, "/")
-    assert kind == "page" and "bar/animation.glb" in html
-    assert resolve_request(demo_output, "/viewer/vendor/three/build/three.module.js")[1].is_file()
+        (demo_output / "linked").unlink()
+    stream, size, suffix = open_request(demo_output, "/bar/report.json?x=1")
+    with stream:
+        assert stream.read() == (demo_output / "bar" / "report.json").read_bytes() and suffix == ".json"
+    stream, size, suffix = open_request(demo_output, "/")
+    assert suffix == ".html" and "bar/animation.glb" in stream.read().decode()
+    assert open_request(demo_output, "/viewer/vendor/three/build/three.module.js")[1] > 0

@@ -6,10 +6,13 @@ import json
 import numpy as np
 import pytest
 
-from meshik import _meshopt, export_draco, export_gltf
+from meshik import _meshopt
+from meshik.export import draco as export_draco
+from meshik.export.glb_layout import rows_of_ids
+from meshik.export.glb_reader import read_animation_glb
 from meshik.cli import main
-from meshik.export_gltf_quantized import MAX_POSITION_BITS, quantized_animation_glb
-from meshik.gltf_container import split_glb
+from meshik.export.glb_quantized import MAX_POSITION_BITS, quantized_animation_glb
+from meshik.export.glb_container import split_glb
 
 
 def canonical(indices: np.ndarray) -> np.ndarray:
@@ -82,11 +85,13 @@ def test_quantized_glb_reproduces_every_frame_on_the_grid(animation, meshopt):
     rest, faces, frames, ids = animation
     grid = export_draco.animation_grid(np.concatenate([frames, rest[None]]), 10)
     data = quantized_animation_glb(rest, faces, frames, ["a", "b", "c"], ids, grid, 30.0, "grid", "test", meshopt=meshopt)
-    read = export_gltf.read_animation_glb(data)
-    rows = export_gltf.rows_of_ids(ids, read.vertex_ids)
+    read = read_animation_glb(data)
+    rows = rows_of_ids(ids, read.vertex_ids)
     assert sorted(read.vertex_ids) == sorted(ids) and read.frame_names == ("a", "b", "c")
     assert np.linalg.norm(read.frames - frames[:, rows], axis=2).max() <= grid.step * np.sqrt(3) / 2 * 1.0001
-    assert np.linalg.norm(read.rest - rest[rows], axis=1).max() <= grid.step * np.sqrt(3) / 2 * 1.0001
+    # morph weights inside [0, 1] (the basis moved to its weights' corner), and the default ones show frame 0
+    assert 0 <= read.weights.min() and read.weights.max() <= 1
+    np.testing.assert_array_equal(read.default_weights, read.weights[0])
     # the triangles are the same, with the same winding (reordered for the vertex cache)
     assert sorted(map(tuple, canonical(ids[rows][read.faces].ravel()))) == sorted(map(tuple, canonical(ids[faces].ravel())))
     document, _ = split_glb(data)
@@ -117,11 +122,20 @@ def test_cli_glb_options_reach_the_file_and_the_report(samples_dir, tmp_path, ca
     assert entry["variant"] == "quantized" and entry["position_bits"] == 12
     document, _ = split_glb((tmp_path / "q" / "animation.glb").read_bytes())
     assert document["extensionsRequired"] == ["KHR_mesh_quantization"]
-    assert document["nodes"][0]["scale"][0] == pytest.approx(entry["grid_step"])
+    assert 0 < document["nodes"][0]["scale"][0] <= entry["grid_step"]  # the basis' node unit: the grid's or finer
     assert entry["morph_targets"] < report["frame_count"]  # the default basis: the bar's frames are low-rank
+    assert entry["readers"]["needs"] == ["KHR_mesh_quantization"] and "Blender 5.0.1" in entry["readers"]["opens_in"]
     assert main(["pose", str(constraints), "--out", str(tmp_path / "f"), "--glb-targets", "frames", "-q"]) == 0
     report = json.loads((tmp_path / "f" / "report.json").read_text())
-    assert report["compressed_outputs"]["animation.glb"]["morph_targets"] == report["frame_count"]
+    entry = report["compressed_outputs"]["animation.glb"]
+    assert entry["morph_targets"] == report["frame_count"] and entry["variant"] == "quantized"  # the default variant
+    document, _ = split_glb((tmp_path / "f" / "animation.glb").read_bytes())
+    assert document["nodes"][0]["scale"][0] == pytest.approx(entry["grid_step"])
+    assert main(["pose", str(constraints), "--out", str(tmp_path / "m"), "--glb", "meshopt", "-q"]) == 0
+    readers = json.loads((tmp_path / "m" / "report.json").read_text())["compressed_outputs"]["animation.glb"]["readers"]
+    assert readers["needs"][-1] == "EXT_meshopt_compression" and readers["refused_by"][0].startswith("Blender 5.0.1")
+    assert main(["info", str(tmp_path / "m" / "animation.glb")]) == 0
+    assert "EXT_meshopt_compression" in capsys.readouterr().out
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "16", "-q"]) == 1
     assert "position bits must be between 1 and 15, got 16" in capsys.readouterr().err
     assert main(["pose", str(constraints), "--out", str(tmp_path / "bad"), "--position-bits", "3", "-q"]) == 1

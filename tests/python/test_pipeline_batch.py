@@ -9,12 +9,14 @@ import time
 
 import pytest
 
-from meshik import batch, export_draco, export_gltf
+from meshik import batch
+from meshik.export import draco as export_draco
+from meshik.export.glb_reader import read_animation_glb
 from meshik.batch import SUMMARY_NAME, job_names
 from meshik.cli import main
 from meshik.errors import PipelineError
-from meshik.meshio import load_mesh
-from meshik.staging import REPORT_NAME
+from meshik.inputs.meshio import load_mesh
+from meshik.outputs.staging import REPORT_NAME
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 
 
@@ -78,7 +80,7 @@ def no_partial_file(folder):
         if path.suffix == ".drc":
             assert len(export_draco.decode(path.read_bytes()).faces) > 0, path
         elif path.suffix == ".glb":
-            assert len(export_gltf.read_animation_glb(path.read_bytes()).frames) > 0, path
+            assert len(read_animation_glb(path.read_bytes()).frames) > 0, path
         elif path.suffix == ".json":
             report = json.loads(path.read_text())
             for name, size in report.get("outputs", {}).items():

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from meshik.cli import main
-from meshik.meshio import load_mesh
+from meshik.inputs.meshio import load_mesh
 from pipeline_meshes import bend, tube_constraints, write_constraints, write_obj, write_tube_set
 
 
@@ -77,7 +77,7 @@ def test_bad_options(shot, capsys):
 
 
 def test_help_explains_every_option(capsys):
-    for command, options in {"pose": ["--out", "--simplify", "--simplifier", "--format", "--feature-space",
+    for command, options in {"pose": ["--out", "--simplify", "--simplify-first", "--simplifier", "--format", "--feature-space",
                                       "--quantization-bits", "--force", "--quiet"],
                              "batch": ["--jobs", "--out", "--quiet"], "blend": ["--weights", "--out", "--feature-space"],
                              "info": ["--json"]}.items():

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from meshik import constraints
+from meshik.inputs import constraints
 from meshik.errors import ConstraintError
 from pipeline_meshes import bend, tube_constraints, write_constraints, write_tube_set
 

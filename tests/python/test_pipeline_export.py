@@ -3,7 +3,9 @@
 import numpy as np
 import pytest
 
-from meshik import export_draco, export_gltf
+from meshik.export import draco as export_draco
+from meshik.export import glb_draco
+from meshik.export.glb_reader import read_animation_glb
 from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import bend, tube
 
@@ -57,14 +59,14 @@ def test_one_grid_keeps_static_vertices_still(animation):
 def test_glb_valid_and_frames_reproduced(animation, tmp_path):
     grid = export_draco.animation_grid(np.concatenate([animation["frames"], animation["rest"][None]]))
     names = [f"f{k}" for k in range(len(animation["frames"]))]
-    data = export_gltf.animation_glb(animation["rest"], animation["faces"], animation["frames"], names, animation["ids"],
+    data = glb_draco.animation_glb(animation["rest"], animation["faces"], animation["frames"], names, animation["ids"],
                                      grid, fps=24.0, name="tube", generator="test")
     path = tmp_path / "tube.glb"
     path.write_bytes(data)
     issues = validate_and_check_no_errors(path)
     assert {m["code"] for m in issues["messages"]} <= {"UNSUPPORTED_EXTENSION", "UNUSED_OBJECT"}
 
-    read = export_gltf.read_animation_glb(data)
+    read = read_animation_glb(data)
     rows = (read.vertex_ids - 3) // 7
     assert read.frame_names == tuple(names)
     np.testing.assert_allclose(read.times, np.arange(5) / 24.0, rtol=1e-6)
@@ -76,7 +78,7 @@ def test_glb_valid_and_frames_reproduced(animation, tmp_path):
     import trimesh
 
     gltf = pygltflib.GLTF2().load(str(path))
-    assert gltf.extensionsRequired == [export_gltf.DRACO_EXTENSION]
+    assert gltf.extensionsRequired == [glb_draco.DRACO_EXTENSION]
     assert len(gltf.meshes[0].primitives[0].targets) == 5 and len(gltf.animations) == 1
     # trimesh has no Draco decoder: it loads the structure (counts from the accessors), not positions
     scene = trimesh.load(path)
@@ -87,5 +89,5 @@ def test_glb_valid_and_frames_reproduced(animation, tmp_path):
 def test_glb_rejects_ids_a_float_cannot_hold(animation):
     grid = export_draco.animation_grid(animation["frames"])
     with pytest.raises(ValueError, match="fit a glTF float attribute"):
-        export_gltf.animation_glb(animation["rest"], animation["faces"], animation["frames"], ["a"] * 5,
+        glb_draco.animation_glb(animation["rest"], animation["faces"], animation["frames"], ["a"] * 5,
                                   animation["ids"] + 2 ** 24, grid, 24.0, "tube", "test")

@@ -5,10 +5,10 @@ import json
 import numpy as np
 import pytest
 
-from meshik import export_draco
-from meshik.meshio import load_mesh
+from meshik.export import draco as export_draco
+from meshik.inputs.meshio import load_mesh
 from meshik.pipeline import pose_job
-from meshik.tracking import farthest_point_handles, tracking_document
+from meshik.inputs.tracking import farthest_point_handles, tracking_document
 from conftest import example_set_files
 from pipeline_clients import validate_and_check_no_errors
 

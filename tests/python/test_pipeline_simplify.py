@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from meshik.errors import PipelineError
-from meshik.meshio import ExampleMeshes, surface_distance
-from meshik.simplify import remap_handles, simplify, _distance_to_own_patch, _mean_edge_length
+from meshik.inputs.meshio import ExampleMeshes, surface_distance
+from meshik.posing.simplify import remap_handles, simplify, _distance_to_own_patch, _mean_edge_length
 from pipeline_meshes import bend, bump, grid, tube
 
 

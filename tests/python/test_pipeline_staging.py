@@ -5,7 +5,7 @@ import os
 import pytest
 
 from meshik.errors import OutputError
-from meshik.staging import REPORT_NAME, StagedOutput, check_writable, is_complete, read_report
+from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_writable, is_complete, read_report
 
 
 def test_commit_moves_files_and_writes_report_last(tmp_path):
@@ -52,11 +52,16 @@ def test_abandoned_staging_folders_are_removed(tmp_path):
     dead = tmp_path / ".meshik-partial-999999999-deadbeef"
     dead.mkdir()
     (dead / "half.drc").write_bytes(b"x")
+    (dead / ".meshik-staging").write_bytes(b"")  # the marker every staging folder gets when made
     alive = tmp_path / f".meshik-partial-{os.getpid()}-cafe"
     alive.mkdir()
+    (alive / ".meshik-staging").write_bytes(b"")
+    users = tmp_path / ".meshik-partial-999999-notes"  # named like staging, but no run made it
+    users.mkdir()
+    (users / "notes.txt").write_text("mine")
     with StagedOutput(tmp_path) as staged:
         staged.commit({})
-    assert not dead.exists() and alive.exists()
+    assert not dead.exists() and alive.exists() and (users / "notes.txt").read_text() == "mine"
 
 
 def test_unusable_destinations(tmp_path):

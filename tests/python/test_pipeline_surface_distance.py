@@ -1,7 +1,7 @@
 """Point-to-triangle distances against a brute-force sampling of the triangle."""
 import numpy as np
 
-from meshik.surface_distance import point_triangle_distance
+from meshik.posing.surface_distance import point_triangle_distance
 
 
 def sampled_distance(point, a, b, c, steps=200):

@@ -50,7 +50,7 @@ def assert_same_pose(ms, output, expected):
 
 @pytest.mark.parametrize("name", SAMPLE_SETS)
 def test_pose_from_constraint_file_equals_python_api(name):
-    constraints = pytest.importorskip("meshik.constraints", reason="the pipeline's constraint-file reader")
+    constraints = pytest.importorskip("meshik.inputs.constraints", reason="the pipeline's constraint-file reader")
     ms, rest, faces, examples = load_sample(name)
     path = SAMPLES / name / "animation.json"
     resolved = constraints.resolve(constraints.load(path), rest)

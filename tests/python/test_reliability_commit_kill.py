@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-from meshik.staging import REPORT_NAME
+from meshik.outputs.staging import REPORT_NAME
 
 MESHIK = Path(sys.executable).parent / "meshik"
 

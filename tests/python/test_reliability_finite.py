@@ -13,7 +13,7 @@ import pytest
 
 import meshik
 from meshik.errors import PipelineError
-from meshik.meshio import load_example_set
+from meshik.inputs.meshio import load_example_set
 from meshik.pipeline import pose_job
 
 MESHIK = Path(sys.executable).parent / "meshik"

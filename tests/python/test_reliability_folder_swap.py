@@ -17,14 +17,14 @@ from pathlib import Path
 
 import pytest
 
-from meshik import folder_swap
-from meshik.staging import REPORT_NAME, StagedOutput
+from meshik.outputs import folder_swap
+from meshik.outputs.staging import REPORT_NAME, StagedOutput
 
 FRAMES = 200
 _WRITER = r"""
 import sys
 from pathlib import Path
-from meshik.staging import StagedOutput
+from meshik.outputs.staging import StagedOutput
 out, generation, marker = Path(sys.argv[1]), int(sys.argv[2]), Path(sys.argv[3])
 with StagedOutput(out / "job", within=out) as staged:
     for i in range({frames}):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from meshik.errors import PipelineError
-from meshik.export_gltf import glb_size_problem
+from meshik.export.glb_layout import glb_size_problem
 from meshik.pipeline import pose_job
 from pipeline_clients import validate_and_check_no_errors
 

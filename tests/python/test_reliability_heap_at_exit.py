@@ -1,7 +1,7 @@
 """Processes that ran the pipeline on a thread other than the main one leave with an intact heap:
 importing pymeshlab on a thread that ends first (a batch worker's job thread) used to make the
 process corrupt glibc's heap at exit ("malloc_consolidate(): unaligned fastbin chunk detected",
-SIGABRT) after its work was done (see meshik.meshlab_module).
+SIGABRT) after its work was done (see meshik.inputs.meshlab_module).
 
 The corruption happens after Python has finished (in C++ static destructors), and glibc notices it
 only when something consolidates that heap afterwards, so by chance. To see it every time, the
@@ -70,7 +70,7 @@ def test_pose_job_on_a_finished_thread_leaves_an_intact_heap(heap_check_library,
 
 
 def test_pymeshlab_is_imported_on_a_thread_that_outlives_the_caller():
-    script = ("import threading\nfrom meshik.meshlab_module import pymeshlab_module\n"
+    script = ("import threading\nfrom meshik.inputs.meshlab_module import pymeshlab_module\n"
               "found = []\nworker = threading.Thread(target=lambda: found.append(pymeshlab_module()))\n"
               "worker.start(); worker.join()\n"
               "owners = [t for t in threading.enumerate() if t.name == 'meshik-pymeshlab-owner']\n"

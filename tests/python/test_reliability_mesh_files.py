@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from meshik.errors import MeshFileError
-from meshik.meshio import load_mesh
+from meshik.inputs.meshio import load_mesh
 
 CRASHING = {
     "index.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3000\n",
@@ -38,7 +38,7 @@ def test_a_reader_that_dies_is_reported_as_a_malformed_file(tmp_path, monkeypatc
     """The reader's out-of-range read crashes only sometimes: make the child die for certain."""
     import signal
 
-    from meshik import isolated_load
+    from meshik.inputs import isolated_load
 
     monkeypatch.setattr(isolated_load, "_read_with_pymeshlab", lambda pymeshlab, path: os.kill(os.getpid(), signal.SIGSEGV))
     path = tmp_path / "rest.obj"

@@ -10,7 +10,7 @@ import pytest
 
 from meshik.errors import OutputError
 from meshik.pipeline import pose_job
-from meshik.staging import REPORT_NAME, StagedOutput
+from meshik.outputs.staging import REPORT_NAME, StagedOutput
 
 
 def test_a_stray_report_listing_other_files_deletes_nothing(tmp_path):

@@ -12,7 +12,7 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from meshik.errors import MeshFileError
-from meshik.meshio import load_mesh
+from meshik.inputs.meshio import load_mesh
 
 MESHIK = Path(sys.executable).parent / "meshik"
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 namespace meshik::constraints {
 namespace {
@@ -20,14 +21,18 @@ struct KnownGroups {
   std::vector<HandleGroup> good;
   std::set<std::string> bad;
   std::vector<std::string> names;  // every group's name, good or bad, in the file's order
+  std::unordered_map<std::string, std::size_t> index;  // name -> position in `good` (constant-time lookups)
   bool member_ok = true;  // "handles" was an object with at least one group
 
   const HandleGroup* find(const std::string& name) const {
-    for (const HandleGroup& group : good)
-      if (group.name == name) return &group;
-    return nullptr;
+    const auto found = index.find(name);
+    return found == index.end() ? nullptr : &good[found->second];
   }
 };
+
+// The frame rates accepted: key times k / fps must stay finite and distinct in the float32 seconds
+// of a glTF animation for any frame count the format allows.
+constexpr double kMinFps = 1e-3, kMaxFps = 1e4;
 
 // Whether `name` can be a file name: a letter, digit, '_' or '-', then up to 99 of those or '.'.
 bool is_frame_name(const std::string& name) {
@@ -65,14 +70,66 @@ void read_mesh_names(const JsonValue& top, ConstraintDocument& document, Violati
       document.examples.push_back(*name);
 }
 
-void read_options(const JsonValue& top, ConstraintDocument& document, ViolationList& problems) {
-  if (const JsonValue* value = top.find("feature_space"))
-    if (auto space = expect_string(*value, "feature_space", problems)) {
-      if (*space == "nonlinear" || *space == "linear")
-        document.feature_space = *space;
-      else
-        problems.add("feature_space", "expected \"nonlinear\" or \"linear\", got \"" + *space + "\"");
+// "regions": a count >= 1, "auto", or an object of named vertex-index lists (no vertex twice).
+std::optional<RegionSetting> read_regions(const JsonValue& value, ViolationList& problems) {
+  RegionSetting setting;
+  if (value.kind == JsonValue::Kind::String) {
+    if (value.text != "auto") {
+      problems.add("regions", "expected a count, \"auto\" or vertex groups, got \"" + value.text + "\"");
+      return std::nullopt;
     }
+    setting.automatic = true;
+    return setting;
+  }
+  if (value.kind == JsonValue::Kind::Number) {
+    const auto count = expect_int(value, "regions", problems, 1, "a region count");
+    if (!count) return std::nullopt;
+    setting.count = *count;
+    return setting;
+  }
+  if (!expect_object(value, "regions", problems)) return std::nullopt;
+  std::map<std::int64_t, std::string> owner;
+  for (const auto& [name, vertices] : value.members) {
+    if (name.rfind('_', 0) == 0) continue;  // a note
+    const std::string path = "regions." + name;
+    if (!expect_list(vertices, path, problems, true)) return std::nullopt;
+    RegionGroup group{name, {}};
+    for (std::size_t i = 0; i < vertices.elements.size(); ++i) {
+      const auto vertex = expect_int(vertices.elements[i], child_path(path, i), problems, 0, "a vertex index");
+      if (!vertex) return std::nullopt;
+      if (!owner.emplace(*vertex, name).second) {
+        problems.add(child_path(path, i), "vertex " + std::to_string(*vertex) + " is already in region \"" +
+                                              owner[*vertex] + "\"");
+        return std::nullopt;
+      }
+      group.vertices.push_back(*vertex);
+    }
+    setting.groups.push_back(std::move(group));
+  }
+  if (setting.groups.empty()) {
+    problems.add("regions", "expected at least one vertex group");
+    return std::nullopt;
+  }
+  return setting;
+}
+
+// The top-level member `name`, when present, as one of two strings (first or second).
+std::optional<std::string> read_choice(const JsonValue& top, const std::string& name, const std::string& first,
+                                       const std::string& second, ViolationList& problems) {
+  const JsonValue* value = top.find(name);
+  if (value == nullptr) return std::nullopt;
+  const auto text = expect_string(*value, name, problems);
+  if (!text || *text == first || *text == second) return text;
+  problems.add(name, "expected \"" + first + "\" or \"" + second + "\", got \"" + *text + "\"");
+  return std::nullopt;
+}
+
+void read_options(const JsonValue& top, ConstraintDocument& document, ViolationList& problems) {
+  document.blend = read_choice(top, "blend", "affine", "free", problems);
+  if (const JsonValue* value = top.find("regions")) document.regions = read_regions(*value, problems);
+  if (const JsonValue* value = top.find("region_smoothness"))
+    document.region_smoothness = expect_number(*value, "region_smoothness", problems, 0.0);
+  document.feature_space = read_choice(top, "feature_space", "nonlinear", "linear", problems);
   if (const JsonValue* value = top.find("weight_regularization"))
     document.weight_regularization = expect_number(*value, "weight_regularization", problems, 0.0);
   if (const JsonValue* value = top.find("max_iterations")) {
@@ -87,7 +144,13 @@ void read_options(const JsonValue& top, ConstraintDocument& document, ViolationL
   if (const JsonValue* value = top.find("tolerance"))
     document.tolerance = expect_number(*value, "tolerance", problems, 0.0, true);
   if (const JsonValue* value = top.find("fps"))
-    if (auto fps = expect_number(*value, "fps", problems, 0.0, true)) document.fps = *fps;
+    if (auto fps = expect_number(*value, "fps", problems, 0.0, true)) {
+      if (*fps < kMinFps || *fps > kMaxFps)
+        problems.add("fps", "expected a frame rate from " + format_general(kMinFps) + " to " + format_general(kMaxFps) +
+                                ", got " + value->text);
+      else
+        document.fps = *fps;
+    }
 }
 
 // One handle group (a vertex-index list or a {near, radius} region); `owner` maps each vertex
@@ -144,8 +207,10 @@ KnownGroups read_handles(const JsonValue& value, ViolationList& problems) {
     if (name.rfind('_', 0) == 0) continue;  // the user's own annotation
     groups.names.push_back(name);
     auto group = read_group(name, spec, child_path("handles", name), owner, problems);
-    if (group)
+    if (group) {
+      groups.index.emplace(group->name, groups.good.size());
       groups.good.push_back(std::move(*group));
+    }
     else
       groups.bad.insert(name);
   }
@@ -304,18 +369,21 @@ std::vector<Frame> read_frames(const JsonValue& value, const KnownGroups& groups
     char numbered[32];
     std::snprintf(numbered, sizeof numbered, "%04zu", number + 1);
     frame.name = numbered;
-    if (const JsonValue* name = spec.find("name")) {
+    const JsonValue* name = spec.find("name");
+    if (name) {
       const std::string name_path = child_path(path, "name");
       if (auto text = expect_string(*name, name_path, problems)) {
         frame.name = *text;
-        const auto earlier = seen.find(frame.name);
         if (!is_frame_name(*text))
           problems.add(name_path, quoted_text(*text) + " cannot be a file name: use letters, digits, \".\", \"_\", \"-\" (at most 100)");
-        else if (earlier != seen.end())
-          problems.add(name_path, "\"" + frame.name + "\" is also the name of frames[" + std::to_string(earlier->second) + "]");
       }
     }
-    seen.emplace(frame.name, number);
+    // Names given and default names ("0002" for frames[1]) share one set of output files.
+    const auto [earlier, fresh] = seen.emplace(frame.name, number);
+    if (!fresh)
+      problems.add(name ? child_path(path, "name") : path,
+                   (name ? "\"" + frame.name + "\" is" : "its default name \"" + frame.name + "\" is") +
+                       " also the name of frames[" + std::to_string(earlier->second) + "]");
     if (const JsonValue* targets = spec.find("targets")) {
       const std::string targets_path = child_path(path, "targets");
       if (expect_object(*targets, targets_path, problems)) read_frame_targets(*targets, targets_path, groups, frame, problems);
@@ -336,7 +404,9 @@ ConstraintDocument read_document(const JsonValue& top, const std::string& source
   document.source = source;
   if (!expect_object(top, "", problems)) return document;
   check_members(top, "", {"format", "version", "rest", "examples", "handles", "frames"},
-                {"$schema", "feature_space", "weight_regularization", "max_iterations", "tolerance", "fps"}, problems);
+                {"$schema", "feature_space", "blend", "regions", "region_smoothness", "weight_regularization",
+                 "max_iterations", "tolerance", "fps"},
+                problems);
   read_format(top, problems);
   read_mesh_names(top, document, problems);
   KnownGroups groups;

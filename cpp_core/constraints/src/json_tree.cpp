@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unordered_set>
+
 namespace meshik::constraints {
 namespace {
 
@@ -45,11 +47,10 @@ class TreeBuilder : public nlohmann::json_sax<Json> {
   bool start_object(std::size_t) override { return open(JsonValue::Kind::Object); }
   bool key(string_t& name) override {
     Open& object = open_.back();
-    for (const auto& member : object.value.members)
-      if (member.first == name) {
-        failure_ = child_path(object.path, name) + ": duplicate key";
-        return false;
-      }
+    if (!object.keys.insert(name).second) {  // a hash set: 100,000 members are checked in linear time
+      failure_ = child_path(object.path, name) + ": duplicate key";
+      return false;
+    }
     object.key = std::move(name);
     return true;
   }
@@ -80,6 +81,7 @@ class TreeBuilder : public nlohmann::json_sax<Json> {
     JsonValue value;
     std::string path;  // JSON path of this list or object
     std::string key;   // the pending member name (objects)
+    std::unordered_set<std::string> keys;  // every member name so far (objects)
   };
 
   static JsonValue number(double value, std::string literal, bool integer) {

@@ -31,14 +31,17 @@ std::string existing_file(const ConstraintDocument& document, const fs::path& ba
   if (name.find('\0') != std::string::npos)
     throw error_at(document, path, "the file name " + quoted_text(name) + " contains a NUL character");
   fs::path resolved;
-  bool found = false;
+  fs::file_type type = fs::file_type::none;
   try {
     resolved = absolute_path(base, name);
-    found = fs::is_regular_file(resolved);
+    type = fs::status(resolved).type();
   } catch (const fs::filesystem_error& error) {
     throw error_at(document, path, std::string("unusable file name: ") + error.what());
   }
-  if (!found) throw error_at(document, path, "mesh file not found: " + resolved.string());
+  if (type == fs::file_type::not_found) throw error_at(document, path, "mesh file not found: " + resolved.string());
+  if (type == fs::file_type::directory) throw error_at(document, path, "is a folder, not a mesh file: " + resolved.string());
+  if (type != fs::file_type::regular)
+    throw error_at(document, path, "is not a regular file (a device, FIFO or socket), not a mesh file: " + resolved.string());
   return resolved.string();
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace meshik::constraints {
 namespace {
@@ -69,14 +70,16 @@ ResolvedConstraints resolve_constraints(const ConstraintDocument& document, cons
     }
     current[g] = rest_positions[g];
   }
+  std::unordered_map<std::string, std::size_t> group_index;  // name -> g: linear in the number of groups
+  for (std::size_t g = 0; g < group_count; ++g) group_index.emplace(document.handles[g].name, g);
   const std::size_t frame_count =
       last_frame < 0 ? document.frames.size() : std::min(document.frames.size(), static_cast<std::size_t>(last_frame) + 1);
   for (std::size_t f = 0; f < frame_count; ++f) {
     // Every group keeps its previous targets unless this frame names it.
     for (const GroupTarget& target : document.frames[f].targets) {
-      std::size_t g = 0;
-      while (g < group_count && document.handles[g].name != target.group) ++g;
-      if (g == group_count) continue;
+      const auto found = group_index.find(target.group);
+      if (found == group_index.end()) continue;
+      const std::size_t g = found->second;
       if (!target.rigid && target.positions.size() != rest_positions[g].size())
         throw ConstraintError(document.source + ": " + target.path + ": expected " +
                               std::to_string(rest_positions[g].size() / 3) + " positions (one per handle vertex), got " +

@@ -1,0 +1,2 @@
+"""Reading inputs: mesh files (pymeshlab, checked first), constraint files, and what `meshik info` and
+`meshik validate` say about them."""
