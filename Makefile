@@ -6,10 +6,12 @@ PY := $(ROOT)/.venv/bin/python
 BUILD := build
 BUILD_ASAN := build-asan
 BUILD_PORTABLE := build-portable
+BUILD_WHEEL := build-wheel
+VERSION = $(shell sed -n 's/^__version__ = "\(.*\)"$$/\1/p' pipeline/meshik/__init__.py)
 JOBS ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all setup build test test-cpp test-asan test-portable test-python demo bench plugin gui-check clean
+.PHONY: all setup build test test-cpp test-asan test-portable test-python demo bench plugin gui-check clean dist wheel sdist plugin-zip
 
 all: build
 
@@ -45,8 +47,11 @@ test-portable: setup $(BUILD_PORTABLE)/build.ninja
 	cmake --build $(BUILD_PORTABLE) -j $(JOBS)
 	ctest --test-dir $(BUILD_PORTABLE) --output-on-failure -j $(JOBS)
 
-test-python: build
-	$(PY) -m pytest -q tests/python
+# The Blender reader test needs bpy in its own venv (about 1 GB): installed here, not by `make demo`.
+# The wheel is built first: tests/python/test_wheel_install.py installs it into a brand-new venv.
+test-python: build wheel
+	@scripts/setup.sh blender
+	MESHIK_WHEEL_REQUIRED=1 $(PY) -m pytest -q tests/python
 
 test: test-cpp test-asan test-portable test-python
 
@@ -65,5 +70,23 @@ PRECISION ?= float
 gui-check: build
 	BUILD=$(abspath $(BUILD)) JOBS=$(JOBS) scripts/gui_check.sh $(PRECISION)
 
+# make dist: in dist/, the wheel repaired by auditwheel (the external shared libraries bundled, a manylinux
+# tag), the sdist, and the MeshLab plugins (float and double) as a zip with install instructions.
+dist: wheel sdist plugin-zip
+
+# The wheel's CMake build stays in $(BUILD_WHEEL) (incremental, ccache), its core without -march=native.
+wheel: setup
+	rm -rf dist/raw dist/meshik-$(VERSION)-*.whl
+	$(PY) -m pip wheel --no-build-isolation --no-deps -q -w dist/raw -C build-dir=$(BUILD_WHEEL) .
+	PATH="$(ROOT)/.venv/bin:$$PATH" $(PY) -m auditwheel repair -w dist dist/raw/meshik-$(VERSION)-*.whl
+	rm -rf dist/raw
+
+sdist: setup $(BUILD)/build.ninja
+	rm -f dist/meshik-$(VERSION).tar.gz
+	$(PY) -m build --sdist --no-isolation -o dist .
+
+plugin-zip: plugin
+	$(PY) scripts/plugin_zip.py $(BUILD) dist $(VERSION)
+
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_PORTABLE) demo_output
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_PORTABLE) $(BUILD_WHEEL) dist demo_output

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Idempotent set-up for a fresh machine: Debian packages, the .venv with pinned Python
 # packages, and the pinned npm tools. Each step does nothing when it is already current.
-# Usage: scripts/setup.sh [system|venv|node|all]
+# Usage: scripts/setup.sh [system|venv|node|blender|all] (blender: for `make test` only, not in all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -56,10 +56,23 @@ setup_node() {
   echo "$want" > $stamp
 }
 
+# Blender's Python module (bpy, about 1 GB, built for Python 3.11) in a venv of its own, for the tests
+# that import our .glb files with Blender's own glTF importer (tests/python/test_glb_blender.py).
+BPY_VERSION=5.0.1
+setup_blender() {
+  local stamp=.venv-blender/.bpy-version
+  if [[ -f $stamp && "$(cat $stamp)" == "$BPY_VERSION" ]]; then return; fi
+  echo "setup: creating .venv-blender with bpy $BPY_VERSION (about 1 GB)"
+  [[ -x .venv-blender/bin/python ]] || python3.11 -m venv .venv-blender
+  .venv-blender/bin/python -m pip install -q --disable-pip-version-check "bpy==$BPY_VERSION"
+  echo "$BPY_VERSION" > $stamp
+}
+
 case "${1:-all}" in
   system) setup_system ;;
   venv) setup_venv ;;
   node) setup_node ;;
+  blender) setup_blender ;;
   all) setup_system; setup_venv; setup_node ;;
-  *) echo "usage: $0 [system|venv|node|all]" >&2; exit 2 ;;
+  *) echo "usage: $0 [system|venv|node|blender|all]" >&2; exit 2 ;;
 esac

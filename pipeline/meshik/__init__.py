@@ -8,6 +8,8 @@ one job through them, meshik.cli is the `meshik` command. The modules' names bef
 """
 import os
 
+__version__ = "0.1.0"
+
 # OpenMP threads that wait at a barrier sleep instead of spinning (unless the caller chose a
 # policy): a solve's passes meet at several barriers per iteration, and on a machine whose other
 # cores are busy a spinning thread takes the time the team's other threads need (measured on the

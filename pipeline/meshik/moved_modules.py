@@ -63,6 +63,9 @@ def _split_module_view(old_name: str, modules: Sequence[types.ModuleType]) -> ty
 class _MovedModuleLoader(importlib.abc.Loader):
     """Loads an old module name as the module(s) that replaced it, warning once per import."""
 
+    def __init__(self) -> None:
+        self.own_spec: Optional[importlib.machinery.ModuleSpec] = None   # the replacement's, when one
+
     def create_module(self, spec) -> types.ModuleType:
         """The new module itself (one replacement) or a view over the replacements (several)."""
         new_names = MOVED_MODULES[spec.name]
@@ -77,7 +80,7 @@ class _MovedModuleLoader(importlib.abc.Loader):
     def exec_module(self, module: types.ModuleType) -> None:
         """Nothing to run; gives the real module back its own __spec__, which the import system
         replaced with the old name's."""
-        if getattr(self, "own_spec", None) is not None and module.__name__ == self.own_spec.name:
+        if self.own_spec is not None and module.__name__ == self.own_spec.name:
             module.__spec__ = self.own_spec
 
 

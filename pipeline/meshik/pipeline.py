@@ -51,7 +51,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
              glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
-             glb_targets: str = "basis", within=None, simplify_first: bool = False) -> Dict[str, Any]:
+             glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
+             regions: Union[None, int, str] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -61,6 +62,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
               instead (faster per frame, but its weights, and so its motion, may differ);
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
+    blend / regions: override the file's ("affine" or "free"; a region count or "auto");
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
@@ -85,9 +87,14 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if not 1 <= position_bits <= MAX_POSITION_BITS:
         raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
+    _check_choice("blend", blend, constraint_files.BLENDS + (None,))
     solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
+    if blend:
+        solver_options["blend"] = blend
+    if regions is not None:
+        solver_options["regions"] = regions
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
                   (glb, position_bits, glb_targets) if "glb" in formats else None, simplify_first)
     if not force and is_complete(out_dir, key):
@@ -113,8 +120,11 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
     check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, target is not None), inputs)
 
+    pose_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
-        posed = pose_animation(pose_meshes, handles, resolved.targets[:, kept], solver_options, on_frame=advance,
+        posed = pose_animation(pose_meshes, handles, resolved.targets[:, kept],
+                               _mesh_solver_options(solver_options, pose_ids, len(meshes.rest), constraints_path),
+                               on_frame=advance,
                                context=str(constraint_set.rest), features=features if simplified is None else None,
                                threads=threads,
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
@@ -128,7 +138,6 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if simplified is not None:
         say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
     posed_meshes = simplified.meshes if simplified is not None else meshes
-
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     everything = np.concatenate([posed.vertices, posed_meshes.rest[None]])
     grid = animation_grid(everything, quantization_bits)
@@ -175,6 +184,17 @@ def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
         if name not in DEFAULT_FORMATS and not (name.isalnum() and saveable_format(name)):
             raise PipelineError(f"unknown output format {name!r}: use drc, glb or a mesh format pymeshlab writes (ply, obj, off, stl, ...)")
     return parsed
+
+
+def _mesh_solver_options(solver_options: Dict[str, Any], vertex_ids: np.ndarray, num_vertices: int,
+                         source) -> Dict[str, Any]:
+    """solver_options for the posed mesh: vertex-group regions (name -> rest vertex indices) become
+    meshik.Solver's array of region ids, taken at the posed vertices' rest ids (vertex_ids)."""
+    regions = solver_options.get("regions")
+    if not isinstance(regions, dict):
+        return solver_options
+    ids = constraint_files.region_vertex_groups(regions, num_vertices, source)
+    return dict(solver_options, regions=ids[np.asarray(vertex_ids)])
 
 
 def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict[str, Any], simplify, simplifier: str,

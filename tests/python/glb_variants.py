@@ -8,12 +8,14 @@ from dataclasses import dataclass
 from typing import Dict
 
 import numpy as np
+import pytest
 
-from meshik.export import draco
+from conftest import SHARED_DATA, example_set_files
+from meshik.export.draco import animation_grid
+from meshik.export.glb_container import glb_bytes, split_glb
 from meshik.export.glb_draco import animation_glb
 from meshik.export.glb_quantized import quantized_animation_glb
 from meshik.export.glb_readers import readers_of
-from meshik.export.glb_container import glb_bytes, split_glb
 from meshik.inputs.meshio import load_mesh
 from meshik.pipeline import pose_job
 
@@ -25,11 +27,12 @@ VARIANTS = {"quantized basis": ("quantized", "basis"), "quantized frames": ("qua
 @dataclass(frozen=True)
 class GlbCase:
     """One .glb to read: its path, its variant (quantized, meshopt, draco), the solver's frames
-    (#frames by #V by 3, the rows being the file's vertex ids), the grid step of the quantized
-    variants (None for draco) and the readers report.json lists for it."""
+    (#frames by #V by 3) and the vertex id of each of their rows (#V, as the file carries them), the
+    grid step of the quantized variants (None for draco) and the readers report.json lists for it."""
     glb: pathlib.Path
     variant: str
     frames: np.ndarray
+    ids: np.ndarray
     grid_step: object
     readers: dict
 
@@ -55,7 +58,10 @@ def bar_cases(samples_dir: pathlib.Path, scratch: pathlib.Path) -> Dict[str, Glb
             report = pose_job(samples_dir / "bar" / "animation.json", folder, formats=("glb", "ply"), glb=variant,
                               glb_targets=targets, simplify=simplify, quiet=True)
             entry = report["compressed_outputs"]["animation.glb"]
-            cases[f"{label} {resolution}"] = GlbCase(folder / "animation.glb", variant, solver_frames(folder, report),
+            frames = solver_frames(folder, report)
+            ids = np.arange(frames.shape[1]) if simplify is None \
+                else np.loadtxt(folder / "vertex_ids.txt", dtype=np.int64).reshape(-1)
+            cases[f"{label} {resolution}"] = GlbCase(folder / "animation.glb", variant, frames, ids,
                                                      None if variant == "draco" else entry["grid_step"], entry["readers"])
     return cases
 
@@ -63,7 +69,6 @@ def bar_cases(samples_dir: pathlib.Path, scratch: pathlib.Path) -> Dict[str, Glb
 def gallop_cases(shared_data: pathlib.Path, scratch: pathlib.Path) -> Dict[str, GlbCase]:
     """{"<variant label> gallop": GlbCase}: the default .glb of `pose_job` on the tracked gallop, and the
     quantized frames and draco files written from the same frames; {} without the data."""
-    from conftest import example_set_files
     from meshik.inputs.tracking import farthest_point_handles, tracking_document
 
     folder = shared_data / "horse-gallop"
@@ -79,18 +84,18 @@ def gallop_cases(shared_data: pathlib.Path, scratch: pathlib.Path) -> Dict[str, 
     entry = report["compressed_outputs"]["gallop.glb"]
     frames = solver_frames(scratch / "gallop", report)
     names = [frame["name"] for frame in report["frames"]]
-    grid = export_draco.animation_grid(np.concatenate([frames, rest[None]]), entry["position_bits"])
+    grid = animation_grid(np.concatenate([frames, rest[None]]), entry["position_bits"])
     ids = np.arange(len(rest))
     per_frame = quantized_animation_glb(rest, faces, frames, names, ids, grid, report["fps"], "gallop", "test",
                                         meshopt=False, targets="frames")
-    draco = animation_glb(rest, faces, frames, names, ids, grid, report["fps"], "gallop", "test")
     (scratch / "gallop_frames.glb").write_bytes(per_frame)
-    (scratch / "gallop_draco.glb").write_bytes(draco)
-    return {"quantized basis gallop": GlbCase(scratch / "gallop" / "gallop.glb", entry["variant"], frames, grid.step,
+    (scratch / "gallop_draco.glb").write_bytes(animation_glb(rest, faces, frames, names, ids, grid, report["fps"],
+                                                             "gallop", "test"))
+    return {"quantized basis gallop": GlbCase(scratch / "gallop" / "gallop.glb", entry["variant"], frames, ids, grid.step,
                                               entry["readers"]),
-            "quantized frames gallop": GlbCase(scratch / "gallop_frames.glb", "quantized", frames, grid.step,
+            "quantized frames gallop": GlbCase(scratch / "gallop_frames.glb", "quantized", frames, ids, grid.step,
                                                readers_of("quantized")),
-            "draco gallop": GlbCase(scratch / "gallop_draco.glb", "draco", frames, None, readers_of("draco"))}
+            "draco gallop": GlbCase(scratch / "gallop_draco.glb", "draco", frames, ids, None, readers_of("draco"))}
 
 
 def without_animation(glb: pathlib.Path, out: pathlib.Path) -> pathlib.Path:
@@ -99,3 +104,18 @@ def without_animation(glb: pathlib.Path, out: pathlib.Path) -> pathlib.Path:
     document.pop("animations")
     out.write_bytes(glb_bytes(document, binary))
     return out
+
+
+@pytest.fixture(scope="session")
+def glb_cases(samples_dir, tmp_path_factory) -> Dict[str, GlbCase]:
+    """Every case of bar_cases and gallop_cases, written once for all the reader tests."""
+    scratch = tmp_path_factory.mktemp("glb_variants")
+    cases = bar_cases(samples_dir, scratch)
+    if SHARED_DATA.is_dir():
+        cases.update(gallop_cases(SHARED_DATA, scratch))
+    return cases
+
+
+# the labels of glb_cases (the gallop's only when the data is there)
+LABELS = [f"{label} {resolution}" for label in VARIANTS for resolution in ("full", "simplified")] \
+    + ["quantized basis gallop", "quantized frames gallop", "draco gallop"]

@@ -6,13 +6,12 @@ key's evaluated mesh is within the variant's error bound of the solver's frame (
 nearest-vertex distance: Blender may reorder or split vertices); the same file without its
 animation shows frame 0. The meshopt variant is refused, as report.json says."""
 import json
-import os
 import subprocess
 
 import numpy as np
 import pytest
 
-from glb_variants import bar_cases, gallop_cases, without_animation
+from glb_variants import LABELS, glb_cases, without_animation  # noqa: F401 - glb_cases is a fixture
 from pipeline_clients import ROOT
 
 BLENDER_PYTHON = ROOT / ".venv-blender" / "bin" / "python"
@@ -21,34 +20,24 @@ MESHOPT_REFUSAL = "Extension EXT_meshopt_compression is not available on this ad
 
 
 @pytest.fixture(scope="module")
-def played(samples_dir, tmp_path_factory):
+def played(glb_cases, tmp_path_factory):
     """{label: (GlbCase, Blender's result for the file, Blender's result for it without animation)}."""
     if not BLENDER_PYTHON.exists():
         pytest.fail(f"{BLENDER_PYTHON} missing: run scripts/setup.sh blender (bpy 5.0.1 in its own venv)")
     scratch = tmp_path_factory.mktemp("blender")
-    cases = bar_cases(samples_dir, scratch)
-    data = ROOT.parent / "shared" / "data"
-    if os.environ.get("MESHIK_SHARED_DATA"):
-        data = type(data)(os.environ["MESHIK_SHARED_DATA"])
-    if data.is_dir():
-        cases.update(gallop_cases(data, scratch))
+    labels = sorted(glb_cases)
     manifest = []
-    for index, (label, case) in enumerate(sorted(cases.items())):
+    for index, label in enumerate(labels):
         frames = scratch / f"frames_{index}.npy"
-        np.save(frames, case.frames)
-        still = without_animation(case.glb, scratch / f"still_{index}.glb")
-        manifest += [{"glb": str(case.glb), "frames": str(frames)}, {"glb": str(still), "frames": str(frames)}]
+        np.save(frames, glb_cases[label].frames)
+        still = without_animation(glb_cases[label].glb, scratch / f"still_{index}.glb")
+        manifest += [{"glb": str(glb_cases[label].glb), "frames": str(frames)}, {"glb": str(still), "frames": str(frames)}]
     (scratch / "manifest.json").write_text(json.dumps(manifest))
     done = subprocess.run([str(BLENDER_PYTHON), str(PLAYER), str(scratch / "manifest.json"), str(scratch / "result.json")],
                           capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr[-3000:]
     results = json.loads((scratch / "result.json").read_text())
-    return {label: (case, results[2 * i], results[2 * i + 1]) for i, (label, case) in enumerate(sorted(cases.items()))}
-
-
-LABELS = [f"{variant} {resolution}" for variant in ("quantized basis", "quantized frames", "meshopt basis",
-                                                     "meshopt frames", "draco") for resolution in ("full", "simplified")] \
-    + ["quantized basis gallop", "quantized frames gallop", "draco gallop"]
+    return {label: (glb_cases[label], results[2 * i], results[2 * i + 1]) for i, label in enumerate(labels)}
 
 
 @pytest.mark.parametrize("label", LABELS)

@@ -1,4 +1,4 @@
-"""Every .glb variant (meshopt and quantized with a morph basis, meshopt with one target per frame,
+"""Every .glb variant (meshopt and quantized, each with a morph basis and with one target per frame;
 draco) read back by clients the project did not write:
 three.js GLTFLoader with the meshoptimizer package's MeshoptDecoder (playing the clip to each key)
 and glTF-Transform, both in Node (tests/node/decode_glb.mjs); each frame matches the solver's
@@ -18,10 +18,10 @@ DECODER = ROOT / "tests" / "node" / "decode_glb.mjs"
 # three.js's GLTFLoader decodes Draco only through DRACOLoader's web worker and wasm, which Node lacks:
 # the Draco variant is read by glTF-Transform here and by Google's draco_decoder in test_pipeline_pose.
 CLIENTS = {"meshopt": ("three", "transform"), "meshopt per frame": ("three", "transform"),
-           "quantized": ("three", "transform"), "draco": ("transform",)}
+           "quantized": ("three", "transform"), "quantized per frame": ("three", "transform"), "draco": ("transform",)}
 # label: (--glb, --glb-targets)
 JOBS = {"meshopt": ("meshopt", "basis"), "meshopt per frame": ("meshopt", "frames"), "quantized": ("quantized", "basis"),
-        "draco": ("draco", "basis")}
+        "quantized per frame": ("quantized", "frames"), "draco": ("draco", "basis")}
 
 
 @pytest.fixture(scope="module", params=[None, 160], ids=["full", "simplified"])

@@ -1,6 +1,7 @@
-"""The files of the output preview (meshik/preview/viewer/): the page with the output folder's jobs, the app,
-and the three.js and meshoptimizer files it imports, from a fixed list of the pinned npm packages
-(node_modules/, installed by scripts/setup.sh node). No network: everything is served locally.
+"""The files of the output preview (meshik/preview/viewer/): the page with the output folder's jobs, the
+app, and the three.js and meshoptimizer files it imports with their licences, a fixed list
+(vendor_files.txt) copied from the pinned npm packages into meshik/preview/vendor/ when the package is
+built. No network: everything is served locally.
 
     write_viewer(out)           # out/index.html and out/viewer/... (what `make demo` leaves)
     viewer_file("viewer/app.js")  # the path behind one URL of the preview, or None
@@ -8,27 +9,23 @@ and the three.js and meshoptimizer files it imports, from a fixed list of the pi
 import json
 import shutil
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 from meshik.errors import OutputError
 
 PACKAGE_VIEWER = Path(__file__).resolve().parent / "viewer"
-NODE_MODULES = Path(__file__).resolve().parents[3] / "node_modules"
+PACKAGE_VENDOR = Path(__file__).resolve().parent / "vendor"
 APP_FILES = ("app.js", "viewer.css")
-# The npm files the page imports (relative to node_modules/), served as viewer/vendor/<path>.
-VENDOR_FILES = (
-    "three/build/three.module.js",
-    "three/build/three.core.js",
-    "three/examples/jsm/loaders/GLTFLoader.js",
-    "three/examples/jsm/loaders/DRACOLoader.js",
-    "three/examples/jsm/controls/OrbitControls.js",
-    "three/examples/jsm/utils/BufferGeometryUtils.js",
-    "three/examples/jsm/utils/SkeletonUtils.js",
-    "three/examples/jsm/libs/draco/draco_decoder.js",
-    "three/examples/jsm/libs/draco/draco_decoder.wasm",
-    "three/examples/jsm/libs/draco/draco_wasm_wrapper.js",
-    "meshoptimizer/meshopt_decoder.mjs",
-)
+
+
+def vendor_files() -> Tuple[str, ...]:
+    """The npm files' paths under vendor/ (served as viewer/vendor/<path>), from vendor_files.txt: one
+    file a line, its node_modules path then, when it differs, its vendor path; # starts a comment."""
+    lines = (Path(__file__).resolve().parent / "vendor_files.txt").read_text(encoding="utf-8").splitlines()
+    return tuple(line.split()[-1] for line in lines if line.strip() and not line.startswith("#"))
+
+
+VENDOR_FILES = vendor_files()
 
 
 def jobs_of(out_dir: Path) -> List[Dict[str, Any]]:
@@ -58,18 +55,18 @@ def viewer_file(relative: str) -> Optional[Path]:
     """The file behind URL path `relative` under viewer/ (e.g. "viewer/app.js",
     "viewer/vendor/three/build/three.module.js"), or None when it is not on the fixed lists."""
     if relative.startswith("viewer/vendor/") and relative[len("viewer/vendor/"):] in VENDOR_FILES:
-        return NODE_MODULES / relative[len("viewer/vendor/"):]
+        return PACKAGE_VENDOR / relative[len("viewer/vendor/"):]
     if relative.startswith("viewer/") and relative[len("viewer/"):] in APP_FILES:
         return PACKAGE_VIEWER / relative[len("viewer/"):]
     return None
 
 
 def check_vendor_files() -> None:
-    """OutputError naming the first missing npm file (run scripts/setup.sh node)."""
+    """OutputError naming the first missing npm file (a development tree not built yet: make build)."""
     for relative in VENDOR_FILES:
-        if not (NODE_MODULES / relative).is_file():
-            raise OutputError(f"{NODE_MODULES / relative}: missing: the preview needs the pinned npm packages "
-                              "(run scripts/setup.sh node)")
+        if not (PACKAGE_VENDOR / relative).is_file():
+            raise OutputError(f"{PACKAGE_VENDOR / relative}: missing: the preview's npm files are copied there when "
+                              "the package is built (make build, after scripts/setup.sh node)")
 
 
 def write_viewer(out_dir: Path) -> Path:
