@@ -215,7 +215,8 @@ def test_parameter_lists_document_every_parameter():
     expected = {
         POSE: ["examplelayers : str", "featurespace : str", "targetsource : str", "targetmesh : int",
                "constraintfile : str", "frame : str", "handletransform : numpy.ndarray[numpy.float64[4, 4]]",
-               "iterations : int", "weightregularization : float", "inplace : bool", "threads : int"],
+               "iterations : int", "weightregularization : float", "blend : str", "regions : int",
+               "regionsmoothness : float", "inplace : bool", "threads : int"],
         BLEND: ["examplelayers : str", "featurespace : str", "weights : str"],
     }
     for name, parameters in expected.items():
