@@ -328,6 +328,18 @@ TEST(BlendRegions, SolverWithRegionsReproducesEachExampleFromItsOwnHandles) {
       EXPECT_LT(worst, 1e-5) << "example " << i;
     }
   }
+  // The same bits for any thread count, with regions as without.
+  meshik::SolverOptions one_thread, two_threads;
+  one_thread.regions = two_threads.regions = 3;
+  one_thread.blend = two_threads.blend = Blend::kFree;
+  one_thread.threads = 1;
+  two_threads.threads = 2;
+  std::vector<double> targets = meshik_test::gather_rows(meshes.examples[0], handles);
+  for (size_t e = 0; e < targets.size(); ++e) targets[e] = 0.5 * (targets[e] + meshes.examples[1][3 * handles[e / 3] + e % 3]);
+  const meshik::SolveResult serial = meshik::Solver(set, handles, one_thread).solve(targets.data());
+  const meshik::SolveResult threaded = meshik::Solver(set, handles, two_threads).solve(targets.data());
+  EXPECT_EQ(serial.vertices, threaded.vertices);
+  EXPECT_EQ(serial.weights, threaded.weights);
   meshik::SolverOptions bad;
   bad.regions = 0;
   EXPECT_THROW(meshik::Solver(set, handles, bad), meshik::InputError);

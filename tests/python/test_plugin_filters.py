@@ -104,6 +104,20 @@ def test_pose_from_handle_transform_with_options_equals_python_api():
     assert_same_pose(ms, output, expected)
 
 
+def test_pose_with_free_blend_and_regions_equals_python_api():
+    ms, rest, faces, examples = load_sample("limb")
+    handles = spread_vertices(rest, 12)
+    select_vertices(ms, handles)
+    matrix = rigid_transform(25.0, 2, [0.1, -0.2, 0.05])
+    output = ms.apply_filter(POSE, targetsource="Handle transform", handletransform=matrix, blend="Free", regions=3,
+                             regionsmoothness=0.5)
+    targets = rest[handles] @ matrix[:3, :3].T + matrix[:3, 3]
+    expected = python_pose(rest, faces, examples, handles, targets, blend="free", regions=3, region_smoothness=0.5)
+    assert len(expected.weights) == 3 * len(examples)
+    assert_same_pose(ms, output, expected)
+    assert "regions" in apply_refused(ms, POSE, targetsource="Handle transform", handletransform=matrix, regions=-1)
+
+
 def test_pose_is_the_same_for_any_thread_count_and_a_negative_count_is_refused():
     ms, rest, faces, examples = load_sample("limb")
     handles = spread_vertices(rest, 12)
@@ -201,7 +215,8 @@ def test_parameter_lists_document_every_parameter():
     expected = {
         POSE: ["examplelayers : str", "featurespace : str", "targetsource : str", "targetmesh : int",
                "constraintfile : str", "frame : str", "handletransform : numpy.ndarray[numpy.float64[4, 4]]",
-               "iterations : int", "weightregularization : float", "inplace : bool", "threads : int"],
+               "iterations : int", "weightregularization : float", "blend : str", "regions : int",
+               "regionsmoothness : float", "inplace : bool", "threads : int"],
         BLEND: ["examplelayers : str", "featurespace : str", "weights : str"],
     }
     for name, parameters in expected.items():
