@@ -8,7 +8,9 @@ Families:
   BEL, CR, LF, a C1 CSI and U+2028 (before: raw escape sequences on the terminal, a newline split
   the error line), through pose, info, blend and validate;
 - 100,000 handle groups: read and refused (a vertex out of range) within 60 s (before: 45-94 s
-  of quadratic duplicate-key and group-name searches just to validate).
+  of quadratic duplicate-key and group-name searches just to validate);
+- 20,000 frames with a .glb: refused before posing, naming the limit (before: not done after 120 s,
+  the .glb step growing about quadratically).
 """
 import json
 import shutil
@@ -104,3 +106,14 @@ def test_100000_handle_groups_are_read_in_linear_time(work, capsys):
     outcome = run_in_process(["pose", path, "--out", work / "out", "--quiet"], capsys)
     assert time.monotonic() - start < 60
     assert_refused(outcome, "is out of range", work / "in", before, work, ("in",))
+
+
+def test_20000_frames_with_a_glb_are_refused_before_posing(work, capsys):
+    frames = [{"name": f"f{k}", "targets": {}} for k in range(20_000)]
+    path = _edited(work, lambda d: d.update(frames=frames))
+    before = tree_state(work / "in")
+    start = time.monotonic()
+    outcome = run_in_process(["pose", path, "--out", work / "out", "--quiet", "--format", "glb"], capsys)
+    assert time.monotonic() - start < 60
+    assert_refused(outcome, "20000 frames is more than the 4096 one animated .glb holds", work / "in", before,
+                   work, ("in",))

@@ -37,12 +37,12 @@ def test_glb_bytes_grow_linearly_with_frames(samples_dir, tmp_path):
 
 
 def test_too_many_frames_for_one_glb_are_refused_before_posing(samples_dir, tmp_path):
-    with pytest.raises(PipelineError, match=r"long_70000.json: 70000 frames is more than the 65535"):
-        pose_job(long_animation(samples_dir, tmp_path / "in", 70000), tmp_path / "out", formats="glb", quiet=True)
+    with pytest.raises(PipelineError, match=r"long_5000.json: 5000 frames is more than the 4096"):
+        pose_job(long_animation(samples_dir, tmp_path / "in", 5000), tmp_path / "out", formats="glb", quiet=True)
     assert not (tmp_path / "out").exists()
 
 
 def test_the_4_gib_limit_is_known_before_posing():
     assert glb_size_problem(1000, 100_000) is None
     assert "4 GiB" in glb_size_problem(1000, 400_000)
-    assert glb_size_problem(65535, 132) is None and glb_size_problem(65536, 132)
+    assert glb_size_problem(4096, 132) is None and glb_size_problem(4097, 132)

@@ -13,7 +13,10 @@ from meshik.export.glb_container import COMPONENT_DTYPES, FLOAT, UNSIGNED_INT, B
 ID_SEMANTIC = "_ORIGINAL_ID"
 _FLOAT_EXACT_INTEGERS = 2 ** 24
 _GLB_MAX_BYTES = 2 ** 32 - 1          # the GLB header's 32-bit length
-MAX_GLB_FRAMES = 2 ** 16 - 1         # sparse weight indices (uint32) address #frames squared values
+# One animated .glb holds at most this many frames: with one morph target per frame (past the
+# morph basis' MAX_BASIS_FRAMES) its weights are #frames squared values, which every reader (and our
+# read-back check) expands; 4,096 frames keep that at 64 MB and the write near linear (issue 23).
+MAX_GLB_FRAMES = 4096
 
 
 def glb_size_problem(frames: int, vertices: int) -> Optional[str]:
@@ -22,7 +25,8 @@ def glb_size_problem(frames: int, vertices: int) -> Optional[str]:
     Known before posing: the morph targets alone take frames x vertices x 12 bytes.
     """
     if frames > MAX_GLB_FRAMES:
-        return f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb can hold"
+        return (f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb holds "
+                "(split the frames over several constraint files, or leave glb out of --format)")
     estimate = frames * (vertices * 12 + 12) + vertices * 16
     if estimate > _GLB_MAX_BYTES:
         return (f"{frames} frames of {vertices} vertices need about {estimate / 2 ** 30:.1f} GiB of morph targets, "
