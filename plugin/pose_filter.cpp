@@ -26,6 +26,18 @@ RichParameterList poseParameters(const MeshDocument& document) {
       "weightregularization", 0.0f, "Weight regularization",
       "k in the energy |G'x - (M(w) + c)|^2 + k |w|^2: values above 0 pull the example weights towards "
       "0 (the rest pose) when the handles leave the span of the examples."));
+  parameters.addParam(RichEnum(
+      "blend", 0, QStringList{"Affine", "Free"}, "Stretch blend",
+      "How the examples' stretches combine. Affine (default): tied to the rest pose, I + sum w_i (S_i - I). "
+      "Free: the paper's own sum w_i S_i, not tied to the rest pose."));
+  parameters.addParam(RichInt(
+      "regions", 1, "Regions",
+      "Spatially varying weights: 1 = one weight vector for the whole mesh; N >= 2 = one per region, N regions "
+      "clustered from how the examples deform (so legs can take one example's stride and the body another's), "
+      "blended smoothly across their borders; 0 = the count chosen from the examples."));
+  parameters.addParam(RichFloat(
+      "regionsmoothness", 0.01f, "Region smoothness",
+      "Pull between neighbouring regions' weights (with few handles it makes them one global vector)."));
   parameters.addParam(RichBool(
       "inplace", false, "Pose in place",
       "Write the pose into the current (rest) layer instead of a new layer \"MeshIK pose of ...\". The new "
@@ -53,6 +65,12 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   options.max_iterations = parameters.getInt("iterations");
   options.weight_regularization = parameters.getFloat("weightregularization");
   options.threads = parameters.getInt("threads");
+  options.blend = parameters.getEnum("blend") == 1 ? Blend::kFree : Blend::kAffine;
+  const int regions = parameters.getInt("regions");
+  if (regions < 0) throw MLException("regions: expected 0 (automatic) or a count of at least 1");
+  options.regions = regions == 0 ? kAutomaticRegions : regions;
+  options.region_smoothness = parameters.getFloat("regionsmoothness");
+  if (!(options.region_smoothness >= 0.0)) throw MLException("regionsmoothness: expected a number >= 0");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
   if (options.threads < 0 || options.threads > kMaxThreads)
     throw MLException(QString("threads: expected 0 (all cores) or a count from 1 to %1, got %2")

@@ -9,7 +9,9 @@ bool sameInputs(const ExampleSetInputs& a, const ExampleSetInputs& b) {
 
 bool sameOptions(const SolverOptions& a, const SolverOptions& b) {
   return a.feature_space == b.feature_space && a.weight_regularization == b.weight_regularization &&
-         a.max_iterations == b.max_iterations && a.tolerance == b.tolerance && a.threads == b.threads;
+         a.max_iterations == b.max_iterations && a.tolerance == b.tolerance && a.threads == b.threads &&
+         a.blend == b.blend && a.regions == b.regions && a.vertex_regions == b.vertex_regions &&
+         a.region_smoothness == b.region_smoothness;
 }
 
 }  // namespace

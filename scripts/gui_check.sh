@@ -15,7 +15,10 @@
 # folded into a later one), the layer moved, the saved pose equals meshik.Solver on the saved file's
 # handles and targets (scripts/gui_check_drag.py), MeshLab answers the Edit menu afterwards, no
 # error dialog or warning. The drag latency (mouse-move event to updated GL buffers, median and
-# max) is printed. Screenshots for a person to look at go to gui_check_output/<precision>/.
+# max, solve and overhead medians) is printed. On the sample, scripts/gui_check_artist.sh then drives
+# handle groups, undo/redo, Esc, rotation, keyframes and mirroring (see there), with screenshots
+# named *_group, *_undo, *_rotate, *_keyframes, *_mirror. Screenshots for a person to look at go to
+# gui_check_output/<precision>/.
 #
 # Usage: scripts/gui_check.sh [float|double]
 # Env:   BUILD (CMake build folder, default build), SAMPLE (sample_meshes/<set>, default limb),
@@ -332,7 +335,7 @@ drive_drag_tool() {
   xdotool key ctrl+a
   xdotool type --delay 5 "$constraints_out"
   xdotool key Return
-  wait_log "MeshIK drag: saved [0-9]+ handles to $constraints_out" 10 >/dev/null || fail "$name: the constraint file was not saved"
+  wait_log "MeshIK drag: saved [0-9]+ handles in [0-9]+ groups, [0-9]+ frames to $constraints_out" 10 >/dev/null || fail "$name: the constraint file was not saved"
   xdotool mousemove 300 120 key p
   dialog=$(wait_window "Save pose" 10) || { shot "${name}_no_pose_dialog"; fail "$name: no \"Save pose\" dialog"; }
   sleep 0.5
@@ -361,11 +364,13 @@ drive_drag_tool() {
   "$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" check "$constraints_out" "$pose_out" "$weights" \
     >"$out/${name}_check.txt" 2>&1 || { cat "$out/${name}_check.txt" >&2; fail "$name: the saved pose is wrong"; }
   step "$name: $(tail -n 1 "$out/${name}_check.txt")"
-  step "$name: $moves moves, $solves solves ($coalesced coalesced, $superseded superseded); latency (mouse move to updated GL buffers) $(sed -E 's/.*latency //' <<<"$summary")"
+  step "$name: $moves moves, $solves solves ($coalesced coalesced, $superseded superseded); latency (mouse move to updated GL buffers) $(sed -E 's/.*latency //' <<<"$summary") (overhead: waiting for the GUI thread plus writing the layer and GL buffers)"
   stop_meshlab
 }
 
 drive_drag_tool "$sample" "$project"
+source "$root/scripts/gui_check_artist.sh"
+drive_artist_features "${sample}_artist" "$project"
 shared_data=${MESHIK_SHARED_DATA:-$root/../shared/data}
 for set in horse elephant; do  # the rest pose and 4 examples of each real set
   if [[ -f $shared_data/$set-poses/reference.obj ]]; then

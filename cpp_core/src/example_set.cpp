@@ -164,7 +164,7 @@ int ExampleSet::num_triangles() const { return impl_->num_triangles; }
 int ExampleSet::num_examples() const { return impl_->num_examples; }
 FeaturePrecision ExampleSet::feature_precision() const { return impl_->features.precision; }
 
-std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space) const {
+std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace feature_space, Blend blend) const {
   const Impl& impl = *impl_;
   const int k = impl.num_examples;
   if (k > 0 && weights == nullptr) throw InputError("no weights given to blend");
@@ -175,7 +175,7 @@ std::vector<double> ExampleSet::blend(const double* weights, FeatureSpace featur
   // Anchors at the origin fix each component's translation; shift it afterwards.
   const std::vector<double> origin(3 * impl.blend_system->handles().size(), 0.0);
   EvaluationBuffers buffers;
-  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data(), buffers);
+  PoseEvaluator evaluator(impl, *impl.blend_system, feature_space, 0.0, origin.data(), buffers, 1, blend);
   PoseEvaluation pose;
   evaluator.evaluate(weights, false, pose);
 

@@ -176,15 +176,45 @@ struct BatchRotation {
   Real rot[9][N];
 };
 
-// Fills r for the triangles whose features (#E blocks of 9 rows) start at feature; weights w (#E).
-template <typename Real, int N>
-MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const double* w, int k, BatchRotation<Real, N>& r) {
+// Weights shared by every lane: example i's is w[i].
+struct SharedWeights {
+  const double* w;
+  template <typename Real>
+  MESHIK_LANE_INLINE Real at(int i, int /*lane*/) const { return static_cast<Real>(w[i]); }
+};
+
+// Weights per lane (spatially varying blends): example i's in lane l is w[i stride + l].
+struct LaneWeights {
+  const double* w;
+  int stride;
+  template <typename Real>
+  MESHIK_LANE_INLINE Real at(int i, int lane) const { return static_cast<Real>(w[i * stride + lane]); }
+};
+
+// Writes s U to 6 rows of N lanes (start), per lane s = 1 (affine) or the weights' sum over the
+// #E examples (free); basis U: 6 rows of N.
+template <typename Real, int N, typename Weights>
+MESHIK_LANE_INLINE void scaled_basis(const Weights& w, int k, Blend blend, const Real* basis, Real* start) {
+  if (blend == Blend::kAffine) {
+    for (int e = 0; e < 6 * N; ++e) start[e] = basis[e];
+    return;
+  }
+  Real sum[N];
+  for (int l = 0; l < N; ++l) sum[l] = 0;
+  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < N; ++l) sum[l] += w.template at<Real>(i, l);
+  for (int e = 0; e < 6 * N; ++e) start[e] = sum[e % N] * basis[e];
+}
+
+// Fills r for the triangles whose features (#E blocks of 9 rows) start at feature; weights w
+// (SharedWeights or LaneWeights over #E examples).
+template <typename Real, int N, typename Weights>
+MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const Weights& w, int k, BatchRotation<Real, N>& r) {
   for (int d = 0; d < 3; ++d)
     for (int l = 0; l < N; ++l) r.phi[d][l] = 0;
   for (int i = 0; i < k; ++i) {
-    const Real weight = static_cast<Real>(w[i]);
     for (int d = 0; d < 3; ++d)
-      for (int l = 0; l < N; ++l) r.phi[d][l] += weight * feature[(i * 9 + d) * N + l];
+      for (int l = 0; l < N; ++l) r.phi[d][l] += w.template at<Real>(i, l) * feature[(i * 9 + d) * N + l];
   }
   for (int l = 0; l < N; ++l)
     r.theta_squared[l] = r.phi[0][l] * r.phi[0][l] + r.phi[1][l] * r.phi[1][l] + r.phi[2][l] * r.phi[2][l];
@@ -269,27 +299,32 @@ MESHIK_LANE_INLINE Real dot_lane(const Real u[3][N], const Real v[3][N], int l) 
 }
 
 // The nonlinear blend of N triangles from their features (#E blocks of 9 rows) and plane basis
-// (6 rows): writes blend_batch's output (#E + 1 blocks of 6 rows of N) to out and leaves the
-// rotation in r.
-template <typename Real, int N>
-MESHIK_LANE_INLINE void blend_nonlinear(const Real* feature, const Real* basis, const double* w, int k, Real* out,
-                                        BatchRotation<Real, N>& r) {
+// (6 rows) with weights w (SharedWeights or LaneWeights): writes blend_batch's output (#E + 1
+// blocks of 6 rows of N) to out and leaves the rotation in r.
+template <typename Real, int N, typename Weights>
+MESHIK_LANE_INLINE void blend_nonlinear(const Real* feature, const Real* basis, const Weights& w, int k, Blend blend,
+                                        Real* out, BatchRotation<Real, N>& r) {
   blend_rotation(feature, w, k, r);
-  // F = R P with P = U + sum_i w_i D_i: the rotated stretch, written as 0 x P + R P.
+  // F = R P with P = U + sum_i w_i D_i (affine) or P = sum_i w_i S_i U = (sum_i w_i) U +
+  // sum_i w_i D_i (free): the rotated stretch, written as 0 x P + R P.
   Real stretch[6 * N];
-  for (int e = 0; e < 6 * N; ++e) stretch[e] = basis[e];
-  for (int i = 0; i < k; ++i) {
-    const Real weight = static_cast<Real>(w[i]);
-    for (int e = 0; e < 6 * N; ++e) stretch[e] += weight * feature[(i * 9 + 3) * N + e];
-  }
+  scaled_basis<Real, N>(w, k, blend, basis, stretch);
+  for (int i = 0; i < k; ++i)
+    for (int e = 0; e < 6 * N; ++e) stretch[e] += w.template at<Real>(i, e % N) * feature[(i * 9 + 3) * N + e];
   const Real zero[3][N] = {};
   cross_plus_rotated(r, zero, stretch, stretch, out);
-  // dF/dw_i = psi_i x F (column by column) + R D_i, psi_i = J_l(phi) phi_i, because
-  // d exp(phi)/dw_i = [J_l(phi) phi_i]_x exp(phi) (so3.h).
+  // dF/dw_i = psi_i x F (column by column) + R dP/dw_i, psi_i = J_l(phi) phi_i, because
+  // d exp(phi)/dw_i = [J_l(phi) phi_i]_x exp(phi) (so3.h); dP/dw_i = D_i (affine), D_i + U (free).
   for (int i = 0; i < k; ++i) {
     Real psi[3][N];
     left_jacobian_times(r, feature + i * 9 * N, psi);
-    cross_plus_rotated(r, psi, out, feature + (i * 9 + 3) * N, out + (i + 1) * 6 * N);
+    const Real* stretch_derivative = feature + (i * 9 + 3) * N;
+    Real free_derivative[6 * N];
+    if (blend == Blend::kFree) {
+      for (int e = 0; e < 6 * N; ++e) free_derivative[e] = stretch_derivative[e] + basis[e];
+      stretch_derivative = free_derivative;
+    }
+    cross_plus_rotated(r, psi, out, stretch_derivative, out + (i + 1) * 6 * N);
   }
 }
 
@@ -365,20 +400,22 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
-// blend_batch on the features' values stored as Stored (values: those of features).
-template <typename Stored>
+// blend_batch on the features' values stored as Stored (values: those of features), weights w
+// (SharedWeights or LaneWeights).
+template <typename Stored, typename Weights>
 MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const FeatureValues<Stored>& values,
-                                     FeatureSpace space, const double* w, int batch, double* out) {
+                                     FeatureSpace space, Blend blend, const Weights& w, int batch, double* out) {
   const int k = features.num_examples;
   const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
   if (space == FeatureSpace::kLinear) {
+    // F = s U + sum_i w_i L_i with s = 1 (affine) or sum_i w_i (free: sum_i w_i T_i U).
     const Stored* lin = values.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
-    for (int e = 0; e < 6 * L; ++e) out[e] = basis[e];
+    scaled_basis<double, L>(w, k, blend, basis, out);
     for (int i = 0; i < k; ++i)
       for (int e = 0; e < 6 * L; ++e) {
         const double value = static_cast<double>(lin[i * 6 * L + e]);
-        out[e] += w[i] * value;
-        out[(i + 1) * 6 * L + e] = value;
+        out[e] += w.template at<double>(i, e % L) * value;
+        out[(i + 1) * 6 * L + e] = blend == Blend::kFree ? value + basis[e] : value;
       }
     return;
   }
@@ -398,7 +435,18 @@ MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const Feat
     wide = room;
   }
   BatchRotation<double, L> r;
-  blend_nonlinear(wide, basis, w, k, out, r);
+  blend_nonlinear(wide, basis, w, k, blend, out, r);
+}
+
+// blend_stored on the features' own precision.
+template <typename Weights>
+MESHIK_LANE_INLINE void blend_any(const ExampleFeatures& features, FeatureSpace space, Blend blend, const Weights& w,
+                                  int batch, double* out) {
+  // An explicit branch, not visit_feature_values: a lambda would not share the caller's clones.
+  if (features.precision == FeaturePrecision::kSingle)
+    blend_stored(features, features.single, space, blend, w, batch, out);
+  else
+    blend_stored(features, features.full, space, blend, w, batch, out);
 }
 
 // Asks for the nonlinear features (values of `features`, as Stored) kCurvatureBatches
@@ -420,17 +468,25 @@ MESHIK_LANE_INLINE void float_feature_pair(const ExampleFeatures& features, cons
 
 MESHIK_SIMD_CLONES
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
-                 double* out) {
-  // An explicit branch, not visit_feature_values: a lambda would not share this function's clones.
-  if (features.precision == FeaturePrecision::kSingle)
-    blend_stored(features, features.single, space, w, batch, out);
-  else
-    blend_stored(features, features.full, space, w, batch, out);
+                 double* out, Blend blend) {
+  blend_any(features, space, blend, SharedWeights{w}, batch, out);
 }
 
 MESHIK_SIMD_CLONES
-void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch, const double* residual,
-                            float* scratch, double* curvature_lanes) {
+void blend_batch_lanes(const ExampleFeatures& features, FeatureSpace space, Blend blend, const double* lane_weights,
+                       int batch, double* out) {
+  blend_any(features, space, blend, LaneWeights{lane_weights, L}, batch, out);
+}
+
+namespace {
+
+// The nonlinear curvature of batches batch and batch + 1 (add_residual_curvature's arguments,
+// weights w: SharedWeights or LaneWeights over 2 kLanes lanes): leaves it per lane in scratch and
+// returns it, #E #E rows of 2 kLanes floats (pairs b <= a at row a #E + b; the lanes of batch
+// first, then those of batch + 1).
+template <typename Weights>
+MESHIK_LANE_INLINE const float* pair_curvature(const ExampleFeatures& features, Blend blend, const Weights& w,
+                                               int batch, const double* residual, float* scratch) {
   constexpr int N = kCurvatureBatches * L;
   const int k = features.num_examples;
   const bool has_second = batch + 1 < features.num_batches;
@@ -452,11 +508,28 @@ void add_residual_curvature(const ExampleFeatures& features, const double* w, in
   float_pair(batch_basis, has_second ? batch_basis + 6 * L : nullptr, 6, basis);
   for (int e = 0; e < k * k * N; ++e) curvature[e] = 0.0f;
   BatchRotation<float, N> r;
-  blend_nonlinear(feature, basis, w, k, out, r);
+  blend_nonlinear(feature, basis, w, k, blend, out, r);
   add_curvature(feature, k, r, out, narrow_residual, curvature);
+  return curvature;
+}
+
+}  // namespace
+
+MESHIK_SIMD_CLONES
+void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch, const double* residual,
+                            float* scratch, double* curvature_lanes, Blend blend) {
+  constexpr int N = kCurvatureBatches * L;
+  const int k = features.num_examples;
+  const float* curvature = pair_curvature(features, blend, SharedWeights{w}, batch, residual, scratch);
   for (int a = 0; a < k; ++a)
     for (int b = 0; b <= a; ++b)
       for (int l = 0; l < N; ++l) curvature_lanes[(a * k + b) * L + l % L] += curvature[(a * k + b) * N + l];
+}
+
+MESHIK_SIMD_CLONES
+const float* residual_curvature_lanes(const ExampleFeatures& features, Blend blend, const double* lane_weights,
+                                      int batch, const double* residual, float* scratch) {
+  return pair_curvature(features, blend, LaneWeights{lane_weights, kCurvatureBatches * L}, batch, residual, scratch);
 }
 
 }  // namespace meshik

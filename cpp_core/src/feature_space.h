@@ -92,9 +92,16 @@ inline int blend_batch_size(int num_examples) { return (6 * (num_examples + 1) +
 
 // Blends the triangles of `batch` with weights w (#E). Writes to out (blend_batch_size doubles),
 // for q = 0 the targets F_j(w) and for q = 1 .. #E the derivatives dF_j/dw_{q-1}, each 3 by 2
-// row-major: out[((q 6) + row) kLanes + lane]; the rest of out is scratch.
+// row-major: out[((q 6) + row) kLanes + lane]; the rest of out is scratch. blend: how the
+// stretches combine (meshik.h's Blend): kFree replaces U_j by (sum_i w_i) U_j in F_j and adds
+// U_j to each derivative (in both spaces).
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,
-                 double* out);
+                 double* out, Blend blend = Blend::kAffine);
+
+// blend_batch with weights that differ per triangle: lane_weights, #E rows of kLanes, example i's
+// weight for the triangle in lane l at lane_weights[i kLanes + l].
+void blend_batch_lanes(const ExampleFeatures& features, FeatureSpace space, Blend blend, const double* lane_weights,
+                       int batch, double* out);
 
 // Floats of scratch add_residual_curvature needs.
 inline int curvature_scratch_size(int num_examples) {
@@ -113,6 +120,14 @@ inline int curvature_scratch_size(int num_examples) {
 // trust-region model), never the energy, its gradient or the pose, so rounding at 1e-7 of its
 // size changes no result, while single precision doubles the lanes per instruction.
 void add_residual_curvature(const ExampleFeatures& features, const double* w, int batch,
-                            const double* residual, float* scratch, double* curvature_lanes);
+                            const double* residual, float* scratch, double* curvature_lanes,
+                            Blend blend = Blend::kAffine);
+
+// add_residual_curvature with weights per triangle and its result per triangle: lane_weights,
+// #E rows of kCurvatureBatches kLanes (example i's weight for lane l of the pair, batch's lanes
+// first, at lane_weights[i 2 kLanes + l]). Returns, inside scratch, #E #E rows of
+// kCurvatureBatches kLanes floats: <R_j, d2F_j/dw_a dw_b> at row a #E + b (b <= a) for each lane.
+const float* residual_curvature_lanes(const ExampleFeatures& features, Blend blend, const double* lane_weights,
+                                      int batch, const double* residual, float* scratch);
 
 }  // namespace meshik

@@ -17,8 +17,9 @@
 
 namespace meshik {
 
-// evaluator: set up for the handles' targets; num_examples: #E; num_triangles: #F (sets the
-// energy's rounding-noise level); initial_weights: #E values or nullptr for w = 0.
+// evaluator: set up for the handles' targets; num_examples: its weights' count K (#E, or #regions
+// by #E); num_triangles: #F (sets the energy's rounding-noise level); initial_weights: K values or
+// nullptr for w = 0.
 // Stops (converged) when the Gauss-Newton model predicts, or an interior step achieves, a relative
 // decrease of at most options.tolerance (or only rounding noise); or after options.max_iterations
 // evaluations. The result's vertices and inverted_triangles are in the evaluator's internal order.

@@ -123,6 +123,10 @@ void validate_options(const SolverOptions& options) {
   if (options.max_iterations < 0)
     throw InputError("max_iterations must be >= 0, got " +
                      std::to_string(options.max_iterations));
+  if (options.regions < 1 && options.regions != kAutomaticRegions)
+    throw InputError("regions must be a count >= 1 or automatic, got " + std::to_string(options.regions));
+  if (!(std::isfinite(options.region_smoothness) && options.region_smoothness >= 0.0))
+    throw InputError("region_smoothness must be finite and >= 0, got " + std::to_string(options.region_smoothness));
 }
 
 void validate_finite(const double* values, int count, const char* what) {

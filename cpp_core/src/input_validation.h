@@ -21,7 +21,8 @@ void validate_examples(const std::vector<const double*>& examples, int num_verti
 void validate_handles(const std::vector<int>& handles, int num_vertices,
                       const VertexComponents& components, const std::vector<int>& internal_of_vertex);
 
-// Options of the solver: finite non-negative regularization and tolerance, max_iterations >= 0.
+// Options of the solver: finite non-negative regularization, tolerance and region smoothness,
+// max_iterations >= 0, regions >= 1 or kAutomaticRegions.
 void validate_options(const SolverOptions& options);
 
 // values: count finite numbers; what names the array in the message ("initial weight", ...).

@@ -23,21 +23,23 @@ constexpr int L = kLanes;
 // work) then delays its team by one task, not by its whole share.
 constexpr int kRowsPerTask = 2048;
 
-// Adds one batch's J^T J (#E by #E, lower triangle, per lane) and J^T F (#E, per lane).
-// out: a blend_batch output.
+// Adds one batch's J^T J (lower triangle, per lane) and J^T F (per lane). out: a blend_batch
+// output, or a region batch's (F, then its k Jacobian columns); its column a is column columns[a]
+// (ascending) of the K weights: into jtj_lanes (K by K by kLanes) and jtf_lanes (K by kLanes).
 MESHIK_SIMD_CLONES
-void accumulate_jacobian_products(const double* __restrict out, int k, double* __restrict jtj_lanes,
-                                  double* __restrict jtf_lanes) {
+void accumulate_mapped_products(const double* __restrict out, int k, const int* columns, int num_weights,
+                                double* __restrict jtj_lanes, double* __restrict jtf_lanes) {
   for (int a = 0; a < k; ++a) {
     const double* __restrict ja = out + (a + 1) * 6 * L;
+    const int ca = columns[a];
     double sum[L];
-    for (int l = 0; l < L; ++l) sum[l] = jtf_lanes[a * L + l];
+    for (int l = 0; l < L; ++l) sum[l] = jtf_lanes[ca * L + l];
     for (int e = 0; e < 6; ++e)
       for (int l = 0; l < L; ++l) sum[l] += ja[e * L + l] * out[e * L + l];
-    for (int l = 0; l < L; ++l) jtf_lanes[a * L + l] = sum[l];
+    for (int l = 0; l < L; ++l) jtf_lanes[ca * L + l] = sum[l];
     for (int b = 0; b <= a; ++b) {
       const double* __restrict jb = out + (b + 1) * 6 * L;
-      double* __restrict acc = jtj_lanes + (a * k + b) * L;
+      double* __restrict acc = jtj_lanes + (static_cast<size_t>(ca) * num_weights + columns[b]) * L;
       for (int l = 0; l < L; ++l) sum[l] = acc[l];
       for (int e = 0; e < 6; ++e)
         for (int l = 0; l < L; ++l) sum[l] += ja[e * L + l] * jb[e * L + l];
@@ -105,6 +107,9 @@ MESHIK_SIMD_CLONES
 void scatter_batch(const double* out, const int* source, int stride, int lanes, const int* rows,
                    const double* gradient, double* rhs) {
   for (int block = 0; block < stride; block += L) {
+    bool empty = true;  // only padding columns (regions: columns of regions the batch lacks)
+    for (int i = 0; i < L; ++i) empty = empty && source[block + i] < 0;
+    if (empty) continue;
     LaneRow first[L], second[L];
     for (int i = 0; i < L; ++i) {
       const int e = source[block + i];
@@ -172,12 +177,13 @@ double batch_residual(const double* vertices, const int* triangles, const double
   return energy;
 }
 
-// P += sum over the rows u in [begin, end) of row_u[j] row_u (j in [3, columns), the Jacobian
-// columns; all `stride` entries of row_u), four rows at a time so that each row of P is loaded
-// and stored once per four. forward: rows of `stride` doubles; P: (columns - 3) rows of stride.
+// P += sum over the rows u in [begin, end) of row_u[j] row_u[i] for the Jacobian columns
+// j = 3 + c k + a (coordinate c, weight a < k) and the entries i the Gauss-Newton system reads:
+// i = c and i in [3 + c k, 3 + (c + 1) k) (the other entries of P are left alone). Four rows at a
+// time, so that each row of P is loaded and stored once per four. forward: rows of `stride`
+// doubles; P: 3 k rows of stride.
 MESHIK_SIMD_CLONES
-void add_outer_products(const double* forward, int begin, int end, int columns, int stride,
-                        double* __restrict outer) {
+void add_outer_products(const double* forward, int begin, int end, int k, int stride, double* __restrict outer) {
   constexpr int kRows = 4;
   int u = begin;
   for (; u + kRows <= end; u += kRows) {
@@ -185,15 +191,21 @@ void add_outer_products(const double* forward, int begin, int end, int columns, 
     const double* __restrict r1 = r0 + stride;
     const double* __restrict r2 = r1 + stride;
     const double* __restrict r3 = r2 + stride;
-    for (int j = 3; j < columns; ++j) {
-      double* __restrict p = outer + (j - 3) * stride;
-      for (int i = 0; i < stride; ++i) p[i] += r0[j] * r0[i] + r1[j] * r1[i] + r2[j] * r2[i] + r3[j] * r3[i];
-    }
+    for (int c = 0; c < 3; ++c)
+      for (int j = 3 + c * k; j < 3 + (c + 1) * k; ++j) {
+        double* __restrict p = outer + (j - 3) * stride;
+        p[c] += r0[j] * r0[c] + r1[j] * r1[c] + r2[j] * r2[c] + r3[j] * r3[c];
+        for (int i = 3 + c * k; i < 3 + (c + 1) * k; ++i)
+          p[i] += r0[j] * r0[i] + r1[j] * r1[i] + r2[j] * r2[i] + r3[j] * r3[i];
+      }
   }
   for (; u < end; ++u) {
     const double* __restrict r = forward + static_cast<size_t>(u) * stride;
-    for (int j = 3; j < columns; ++j)
-      for (int i = 0; i < stride; ++i) outer[(j - 3) * stride + i] += r[j] * r[i];
+    for (int c = 0; c < 3; ++c)
+      for (int j = 3 + c * k; j < 3 + (c + 1) * k; ++j) {
+        outer[(j - 3) * stride + c] += r[j] * r[c];
+        for (int i = 3 + c * k; i < 3 + (c + 1) * k; ++i) outer[(j - 3) * stride + i] += r[j] * r[i];
+      }
   }
 }
 
@@ -225,11 +237,14 @@ double* aligned_start(std::vector<double>& storage, size_t count) {
 
 PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system,
                              FeatureSpace space, double regularization, const double* targets,
-                             EvaluationBuffers& buffers, int team)
+                             EvaluationBuffers& buffers, int team, Blend blend, const BlendRegions* regions)
     : set_(set),
       system_(system),
       partition_(system.partition()),
       space_(space),
+      blend_(blend),
+      regions_(regions),
+      num_weights_(regions != nullptr ? regions->num_regions * set.num_examples : set.num_examples),
       regularization_(regularization),
       targets_(targets),
       team_(team),
@@ -237,16 +252,26 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       batch_has_handle_(set.features.num_batches, 0),
       batch_out_(static_cast<size_t>(partition_.num_chunks()) * blend_batch_size(set.num_examples)),
       residual_(buffers.residual),
-      jtj_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * set.num_examples * L),
-      jts_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * L),
-      handle_jts_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples),
-      curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * set.num_examples * set.num_examples * L),
+      jtj_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * num_weights_ * L),
+      jts_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * L),
+      handle_jts_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_),
+      curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * num_weights_ * L),
       curvature_scratch_(static_cast<size_t>(system.partition().num_chunks()) * curvature_scratch_size(set.num_examples)),
       chunk_energy_(system.partition().num_chunks()),
       chunk_inverted_(system.partition().num_chunks()),
-      outer_products_(static_cast<size_t>(system.partition().num_chunks()) * 3 * set.num_examples *
-                      row_width(3 * (set.num_examples + 1))) {
-  const int k = set.num_examples;
+      outer_products_(static_cast<size_t>(system.partition().num_chunks()) * 3 * num_weights_ *
+                      row_width(3 * (num_weights_ + 1))) {
+  const int k = num_weights_;
+  const size_t chunks = partition_.num_chunks();
+  all_columns_.resize(k);
+  for (int a = 0; a < k; ++a) all_columns_[a] = a;
+  if (regions_ != nullptr) {
+    region_out_.resize(chunks * 6 * (k + 1) * L);
+    region_columns_.resize(chunks * k);
+    region_source_.resize(chunks * row_width(3 * (k + 1)));
+    region_lane_weights_.resize(chunks * set.num_examples * kCurvatureBatches * L);
+    region_curvature_.resize(chunks * k * k);
+  }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
   residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
@@ -269,47 +294,114 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
 }
 
+void PoseEvaluator::lane_weights(const double* weights, int first, int lanes, int row, double* out) const {
+  const int e = set_.num_examples, count = regions_->num_regions;
+  std::fill(out, out + static_cast<size_t>(e) * row, 0.0);
+  for (int l = 0; l < lanes; ++l) {
+    const double* share = regions_->share.data() + static_cast<size_t>(first + l) * count;
+    for (int r = 0; r < count; ++r) {
+      if (share[r] == 0.0) continue;
+      for (int i = 0; i < e; ++i) out[i * row + l] += share[r] * weights[r * e + i];
+    }
+  }
+}
+
+int PoseEvaluator::blend_region_batch(const double* weights, bool with_jacobian, int batch, int chunk,
+                                      double* region_out, int* columns, int* source) {
+  const int e = set_.num_examples, k = num_weights_, count = regions_->num_regions;
+  const int first = batch * L, lanes = std::min(L, set_.num_triangles - first);
+  double* out = batch_out_.data() + static_cast<size_t>(chunk) * blend_batch_size(e);
+  const int whole = regions_->whole_region[batch];
+  if (whole >= 0) {
+    blend_batch(set_.features, space_, weights + whole * e, batch, out, blend_);
+  } else {
+    double* lane_weight = region_lane_weights_.data() + static_cast<size_t>(chunk) * e * kCurvatureBatches * L;
+    lane_weights(weights, first, lanes, L, lane_weight);
+    blend_batch_lanes(set_.features, space_, blend_, lane_weight, batch, out);
+  }
+  std::copy(out, out + 6 * L, region_out);
+  int n = 0;
+  for (int t = 0; with_jacobian && t < regions_->batch_region_count(batch); ++t) {
+    const int r = regions_->batch_regions(batch)[t];
+    double share[L] = {};
+    for (int l = 0; l < lanes; ++l) share[l] = regions_->share[static_cast<size_t>(first + l) * count + r];
+    for (int i = 0; i < e; ++i, ++n) {
+      columns[n] = r * e + i;
+      const double* from = out + (i + 1) * 6 * L;
+      double* to = region_out + (n + 1) * 6 * L;
+      if (whole >= 0) {
+        std::copy(from, from + 6 * L, to);  // shares of one: the blend's own bits
+      } else {
+        for (int row = 0; row < 6; ++row)
+          for (int l = 0; l < L; ++l) to[row * L + l] = share[l] * from[row * L + l];
+      }
+    }
+  }
+  std::fill(source, source + stride_, -1);
+  for (int c = 0; c < 3; ++c) {
+    source[c] = 2 * c;
+    for (int a = 0; a < n; ++a) source[3 + c * k + columns[a]] = (a + 1) * 6 + 2 * c;
+  }
+  return n;
+}
+
 void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, const int* source, int chunk) {
-  const int k = set_.num_examples;
+  const int e = set_.num_examples;
+  const int k = num_weights_;
   const int m = set_.num_triangles;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
   const int* corner_row = partition_.corner_row.data();
-  double* out = batch_out_.data() + static_cast<size_t>(chunk) * blend_batch_size(k);
+  double* out = batch_out_.data() + static_cast<size_t>(chunk) * blend_batch_size(e);
   double* jtj_lanes = jtj_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
   double* jts_lanes = jts_lanes_.data() + static_cast<size_t>(chunk) * k * L;
   double* handle_jts = handle_jts_.data() + static_cast<size_t>(chunk) * k;
+  double* region_out = regions_ ? region_out_.data() + static_cast<size_t>(chunk) * 6 * (k + 1) * L : nullptr;
+  int* columns = regions_ ? region_columns_.data() + static_cast<size_t>(chunk) * k : nullptr;
+  int* batch_source = regions_ ? region_source_.data() + static_cast<size_t>(chunk) * row_width(3 * (k + 1)) : nullptr;
   const int end = partition_.batch_start[chunk + 1];
   for (int batch = partition_.batch_start[chunk]; batch < end; ++batch) {
     if (batch + 1 < end) prefetch_rows(rhs_, stride_, corner_row + 3 * static_cast<size_t>(batch + 1) * L, 3 * L);
-    blend_batch(set_.features, space_, weights, batch, out);
-    std::copy(out, out + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
+    const double* block = out;  // F_j, then the Jacobian's columns of the batch
+    const int* block_source = source;
+    int block_columns = k;
+    if (regions_ != nullptr) {
+      block_columns = blend_region_batch(weights, with_jacobian, batch, chunk, region_out, columns, batch_source);
+      block = region_out;
+      block_source = batch_source;
+    } else {
+      blend_batch(set_.features, space_, weights, batch, out, blend_);
+    }
+    std::copy(block, block + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
     const int lanes = std::min(L, m - first);
     if (with_jacobian) {
-      accumulate_jacobian_products(out, k, jtj_lanes, jts_lanes);
+      accumulate_mapped_products(block, block_columns, regions_ != nullptr ? columns : all_columns_.data(), k,
+                                 jtj_lanes, jts_lanes);
       // J^T s = J^T F - J^T (handles' part of Q) on the few triangles touching a handle.
       for (int l = 0; batch_has_handle_[batch] && l < lanes; ++l) {
         const int slot = slot_of_triangle[first + l];
         if (slot < 0) continue;
-        for (int a = 0; a < k; ++a)
-          for (int e = 0; e < 6; ++e)
-            handle_jts[a] -= out[((a + 1) * 6 + e) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + e];
+        for (int a = 0; a < block_columns; ++a) {
+          const int column = regions_ != nullptr ? columns[a] : a;
+          for (int q = 0; q < 6; ++q)
+            handle_jts[column] -= block[((a + 1) * 6 + q) * L + l] * handle_offset_[6 * static_cast<size_t>(slot) + q];
+        }
       }
     }
-    scatter_batch(out, source, stride_, lanes, corner_row + 3 * static_cast<size_t>(first),
+    scatter_batch(block, block_source, stride_, lanes, corner_row + 3 * static_cast<size_t>(first),
                   set_.frames.gradient.data() + 6 * static_cast<size_t>(first), rhs_);
   }
 }
 
 void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
-  const int k = set_.num_examples;
+  const int k = num_weights_;
   const int rows = system_.num_rows();
   const int all_rows = rows + partition_.num_extra_rows();
   const int chunks = partition_.num_chunks();
   std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
   std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
   std::fill(handle_jts_.begin(), handle_jts_.end(), 0.0);
-  const std::vector<int> source = column_sources(k, with_jacobian, stride_);
+  const std::vector<int> source = regions_ != nullptr ? std::vector<int>() : column_sources(k, with_jacobian, stride_);
 #pragma omp parallel num_threads(team_)
   {
     // Every system row starts as -K_fh x_h in its first 3 columns (nonzero only in the rows
@@ -403,36 +495,100 @@ double PoseEvaluator::pose_and_residual(double* vertices, std::vector<int>& inve
   return energy;
 }
 
+void PoseEvaluator::add_region_curvature(const double* weights, int chunk) {
+  const int e = set_.num_examples, k = num_weights_, count = regions_->num_regions;
+  constexpr int N = kCurvatureBatches * L;
+  float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(e);
+  double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+  double* dense = region_curvature_.data() + static_cast<size_t>(chunk) * k * k;
+  double* lane_weight = region_lane_weights_.data() + static_cast<size_t>(chunk) * e * N;
+  const int batches = set_.features.num_batches;
+  for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
+       batch += kCurvatureBatches) {
+    const double* residual = residual_.data() + static_cast<size_t>(batch) * 6 * L;
+    const int whole = regions_->whole_region[batch];
+    if (whole >= 0 && (batch + 1 >= batches || regions_->whole_region[batch + 1] == whole)) {
+      // Inside one region: as without regions, into that region's block (#E by #E by kLanes).
+      add_residual_curvature(set_.features, weights + whole * e, batch, residual, scratch,
+                             lanes + static_cast<size_t>(whole) * e * e * L, blend_);
+      continue;
+    }
+    const int first = batch * L, pair_lanes = std::min(N, set_.num_triangles - first);
+    lane_weights(weights, first, pair_lanes, N, lane_weight);
+    const float* curvature = residual_curvature_lanes(set_.features, blend_, lane_weight, batch, residual, scratch);
+    // d2F_j/dW_ra dW_sb = alpha_jr alpha_js d2F_j/dw_a dw_b.
+    for (int l = 0; l < pair_lanes; ++l) {
+      const double* share = regions_->share.data() + static_cast<size_t>(first + l) * count;
+      for (int r = 0; r < count; ++r) {
+        if (share[r] == 0.0) continue;
+        for (int s = 0; s < count; ++s) {
+          if (share[s] == 0.0) continue;
+          const double product = share[r] * share[s];
+          for (int a = 0; a < e; ++a)
+            for (int b = 0; b < e; ++b) {
+              const int pair = a >= b ? a * e + b : b * e + a;
+              dense[static_cast<size_t>(r * e + a) * k + s * e + b] += product * curvature[pair * N + l];
+            }
+        }
+      }
+    }
+  }
+}
+
 void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   if (at.evaluation == 0 || at.evaluation != evaluations_)
     throw std::logic_error("PoseEvaluator::add_second_order: not the evaluator's last evaluation");
-  const int k = set_.num_examples;
+  const int k = num_weights_;
+  const int e = set_.num_examples;
   at.second_order.setZero(k, k);
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
   std::fill(curvature_lanes_.begin(), curvature_lanes_.end(), 0.0);
+  std::fill(region_curvature_.begin(), region_curvature_.end(), 0.0);
   const int chunks = partition_.num_chunks();
   const double* weights = at.weights.data();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
   for (int chunk = 0; chunk < chunks; ++chunk) {
+    if (regions_ != nullptr) {
+      add_region_curvature(weights, chunk);
+      continue;
+    }
     float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(k);
     double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
     for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
          batch += kCurvatureBatches)
       add_residual_curvature(set_.features, weights, batch, residual_.data() + static_cast<size_t>(batch) * 6 * L,
-                             scratch, lanes);
+                             scratch, lanes, blend_);
   }
   sum_chunks(curvature_lanes_, k * k * L);
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b <= a; ++b) {
-      double sum = 0.0;
-      for (int l = 0; l < L; ++l) sum += curvature_lanes_[(a * k + b) * L + l];
-      at.second_order(a, b) = at.second_order(b, a) = -sum;
-    }
+  // Without regions one block of #E = K; with them one per region, at region r's offset r #E #E L.
+  const int blocks = regions_ != nullptr ? regions_->num_regions : 1;
+  for (int r = 0; r < blocks; ++r) {
+    const double* lanes = curvature_lanes_.data() + static_cast<size_t>(r) * e * e * L;
+    for (int a = 0; a < e; ++a)
+      for (int b = 0; b <= a; ++b) {
+        double sum = 0.0;
+        for (int l = 0; l < L; ++l) sum += lanes[(a * e + b) * L + l];
+        at.second_order(r * e + a, r * e + b) = at.second_order(r * e + b, r * e + a) = -sum;
+      }
+  }
+  if (regions_ == nullptr || regions_->num_regions == 1) return;
+  sum_chunks(region_curvature_, k * k);
+  at.second_order -= Eigen::Map<const Eigen::MatrixXd>(region_curvature_.data(), k, k);
+}
+
+double PoseEvaluator::region_smoothness_energy(const double* weights, Eigen::VectorXd* product) const {
+  const int k = num_weights_, e = set_.num_examples;
+  if (product != nullptr) product->setZero(k);
+  if (regions_ == nullptr || regions_->num_regions == 1) return 0.0;
+  const Eigen::Map<const Eigen::MatrixXd> w(weights, e, regions_->num_regions);  // column r: W_r
+  const Eigen::MatrixXd mw = w * regions_->smoothness;  // column r: sum_s M_rs W_s
+  if (product != nullptr) *product = Eigen::Map<const Eigen::VectorXd>(mw.data(), k);
+  return w.cwiseProduct(mw).sum();
 }
 
 void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out) {
-  const int k = set_.num_examples;
+  const int k = num_weights_;
   const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
   stride_ = row_width(nrhs);
   assemble(weights, with_jacobian);
@@ -448,7 +604,7 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   const int outer_size = 3 * k * stride_;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
   for (int chunk = 0; chunk < chunks; ++chunk)
-    add_outer_products(rhs_, partition_.row_start[chunk], partition_.row_start[chunk + 1], nrhs, stride_,
+    add_outer_products(rhs_, partition_.row_start[chunk], partition_.row_start[chunk + 1], k, stride_,
                        outer_products_.data() + static_cast<size_t>(chunk) * outer_size);
   sum_chunks(outer_products_, outer_size);
   for (int c = 0; c < 3; ++c)
@@ -461,21 +617,31 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   out.schur = jtj_ - 0.5 * (hth + hth.transpose());
   out.schur.diagonal().array() += regularization_;
   out.step_rhs = htx - jts_ - regularization_ * w;
+  if (regions_ == nullptr || regions_->num_regions == 1) return;
+  // + W^T (M kron I) W: half its Hessian is M kron I, half its gradient (M kron I) W.
+  Eigen::VectorXd smooth_gradient;
+  region_smoothness_energy(weights, &smooth_gradient);
+  const int e = set_.num_examples;
+  for (int r = 0; r < regions_->num_regions; ++r)
+    for (int s = 0; s < regions_->num_regions; ++s)
+      out.schur.block(r * e, s * e, e, e).diagonal().array() += regions_->smoothness(r, s);
+  out.step_rhs -= smooth_gradient;
 }
 
 void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   assemble_and_forward_solve(weights, with_jacobian, out);
   system_.backward_solve(rhs_, stride_, 3, team_);
   out.vertices.resize(3 * static_cast<size_t>(set_.num_vertices));
-  const Eigen::Map<const Eigen::VectorXd> w(weights, set_.num_examples);
+  const Eigen::Map<const Eigen::VectorXd> w(weights, num_weights_);
   out.energy =
       pose_and_residual(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
+  if (regions_ != nullptr && regions_->num_regions > 1) out.energy += region_smoothness_energy(weights, nullptr);
   out.has_second_order = false;
   out.evaluation = ++evaluations_;
 }
 
 void PoseEvaluator::solve_jacobian_rows(const std::vector<int>& rows) {
-  system_.backward_solve_rows(rhs_, stride_, 3 * (set_.num_examples + 1), rows, team_);
+  system_.backward_solve_rows(rhs_, stride_, 3 * (num_weights_ + 1), rows, team_);
 }
 
 void PoseEvaluator::evaluate_system(const double* weights, PoseEvaluation& out) {

@@ -12,21 +12,23 @@
 
 #include <Eigen/Core>
 
+#include "blend_regions.h"
 #include "example_set_impl.h"
 #include "pose_system.h"
 
 namespace meshik {
 
+// Below, K is the number of weights: #E, or #regions by #E (region-major) with BlendRegions.
 struct PoseEvaluation {
-  std::vector<double> weights;   // #E: the weights w evaluated
+  std::vector<double> weights;   // K: the weights w evaluated
   std::vector<double> vertices;  // #V by 3: x*(w), handles at their targets
-  double energy = 0.0;           // phi(w), regularization included
+  double energy = 0.0;           // phi(w), regularization (and region smoothness) included
   // Ascending internal indices of the triangles of x*(w) turned over against their targets
   // F_j(w) (normals at more than 90 degrees; see batch_residual).
   std::vector<int> inverted_triangles;
-  Eigen::MatrixXd schur;         // #E by #E: S (only with the Jacobian)
-  Eigen::VectorXd step_rhs;      // #E: g = -(1/2) d phi / dw (only with the Jacobian)
-  // #E by #E: -sum_j <R_j, d2F_j/dw dw>, so that S + second_order is half the Hessian of phi
+  Eigen::MatrixXd schur;         // K by K: S (only with the Jacobian)
+  Eigen::VectorXd step_rhs;      // K: g = -(1/2) d phi / dw (only with the Jacobian)
+  // K by K: -sum_j <R_j, d2F_j/dw dw>, so that S + second_order is half the Hessian of phi
   // (zero in the linear space); only once PoseEvaluator::add_second_order has run.
   Eigen::MatrixXd second_order;
   bool has_second_order = false;
@@ -37,7 +39,7 @@ struct PoseEvaluation {
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
   std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
-  // PoseSystem::num_rows() + AssemblyPartition::num_extra_rows() rows of 3 (#E + 1) doubles
+  // PoseSystem::num_rows() + AssemblyPartition::num_extra_rows() rows of 3 (K + 1) doubles
   // rounded up to whole blocks of kLanes, from the first 64-byte boundary: the right-hand sides,
   // then their solution, and the chunks' extra rows (layout: PoseEvaluator's rhs_).
   std::vector<double> rhs;
@@ -49,23 +51,28 @@ class PoseEvaluator {
   // targets: #H by 3 handle positions; regularization: kappa >= 0; buffers: storage to use (may be
   // shared by successive evaluators, not by simultaneous ones); team: threads of the passes (a
   // thread_count; every result is the same bits for any team: the passes run over the system's
-  // fixed partition and combine its chunks in order).
+  // fixed partition and combine its chunks in order). blend: how the stretches combine; regions:
+  // spatially varying weights (outlives this), or nullptr for one weight vector (K = #E).
   PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system, FeatureSpace space,
-                double regularization, const double* targets, EvaluationBuffers& buffers, int team = 1);
+                double regularization, const double* targets, EvaluationBuffers& buffers, int team = 1,
+                Blend blend = Blend::kAffine, const BlendRegions* regions = nullptr);
+
+  // K: the number of weights an evaluation takes.
+  int num_weights() const { return num_weights_; }
 
 
-  // Evaluates at weights (#E). with_jacobian = false computes only weights, vertices and energy.
+  // Evaluates at weights (K). with_jacobian = false computes only weights, vertices and energy.
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
 
-  // Only the Gauss-Newton system at weights (#E): fills out.weights, out.schur and out.step_rhs
+  // Only the Gauss-Newton system at weights (K): fills out.weights, out.schur and out.step_rhs
   // (no pose, energy or backward solve; out.evaluation = 0, so add_second_order refuses it).
   void evaluate_system(const double* weights, PoseEvaluation& out);
   // After evaluate_system: finishes the solve of the Jacobian's columns on the system rows `rows`
   // (factor order) only, along their elimination-tree paths.
   void solve_jacobian_rows(const std::vector<int>& rows);
-  // Then, for those rows u: #E values of Z = K'^{-1} G'^T J for coordinate c.
+  // Then, for those rows u: K values of Z = K'^{-1} G'^T J for coordinate c.
   const double* jacobian_solution(int unknown, int c) const {
-    return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * set_.num_examples;
+    return rhs_ + static_cast<size_t>(unknown) * stride_ + 3 + c * num_weights_;
   }
 
   // Fills at.second_order for the pose this evaluator evaluated last (one more pass over the
@@ -80,8 +87,21 @@ class PoseEvaluator {
   void assemble(const double* weights, bool with_jacobian);
   // assemble()'s work on one chunk: its batches' F_j(w) into residual_, its sums into its slices
   // of jtj_lanes_, jts_lanes_ and handle_jts_, its scatter into its rows of rhs_.
-  // source: column_sources for stride_.
+  // source: column_sources for stride_ (unused with regions).
   void assemble_chunk(const double* weights, bool with_jacobian, const int* source, int chunk);
+  // With regions: blends one batch at the region weights (K) into batch_out_'s slice of the chunk
+  // and writes region_out (1 + #active #E blocks of 6 rows of kLanes: F_j, then alpha_jr dF_j/dw_i
+  // for the batch's active regions r in order) and its columns' indices among the K weights
+  // (columns) and rhs sources (source, stride_ entries). Returns the number of Jacobian columns.
+  int blend_region_batch(const double* weights, bool with_jacobian, int batch, int chunk, double* region_out,
+                         int* columns, int* source);
+  // With regions: add_second_order's per-chunk pass (pairs of batches) into curvature_lanes_
+  // (batches wholly inside one region, as without regions, into that region's diagonal block) and
+  // region_curvature_ (the others, per triangle).
+  void add_region_curvature(const double* weights, int chunk);
+  // The triangle-varying weights of `lanes` triangles from first (internal order) at the region
+  // weights (K): #E rows of `row` doubles, zero beyond lanes.
+  void lane_weights(const double* weights, int first, int lanes, int row, double* out) const;
   // per_chunk: #chunks slices of `size` doubles; adds slices 1.. to slice 0, in chunk order.
   void sum_chunks(std::vector<double>& per_chunk, int size) const;
   // assemble(), the forward solve, and with the Jacobian the Gauss-Newton system (out.weights,
@@ -90,6 +110,9 @@ class PoseEvaluator {
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets: a work-shared loop, called
   // inside a parallel region.
   void gather_vertices(double* vertices) const;
+  // The region smoothness W^T (M kron I) W at weights (K), and with product its gradient's half
+  // (M kron I) W (K values); zero without regions or with one.
+  double region_smoothness_energy(const double* weights, Eigen::VectorXd* product) const;
   // One chunk's part of sum_j |Q_j(x) - F_j(w)|^2 for vertices x (#V by 3), F from the last
   // assemble(): replaces F by those residuals in residual_, writes the sum to
   // chunk_energy_[chunk] and the triangles turned over against F to chunk_inverted_[chunk].
@@ -102,30 +125,41 @@ class PoseEvaluator {
   const PoseSystem& system_;
   const AssemblyPartition& partition_;
   FeatureSpace space_;
+  Blend blend_;
+  const BlendRegions* regions_;  // nullptr: one weight vector
+  int num_weights_;              // K
   double regularization_;
   const double* targets_;
   int team_;
   std::vector<double> handle_offset_;    // #handle triangles by 6: handles' part of Q_j
   std::vector<char> batch_has_handle_;   // per batch: does it hold a triangle with a handle?
   std::vector<double> batch_out_;        // #chunks by blend_batch_size(#E): a batch's F and dF/dw
+  // With regions, per chunk: a batch's region_out (6 (K + 1) kLanes), its columns (K) and rhs
+  // sources (row_width(3 (K + 1))), and 2 kLanes lane weights per example.
+  std::vector<int> all_columns_;  // 0 .. K - 1: the columns of a batch without regions
+  std::vector<double> region_out_;
+  std::vector<int> region_columns_;
+  std::vector<int> region_source_;
+  std::vector<double> region_lane_weights_;
+  std::vector<double> region_curvature_;  // #chunks by K by K: the per-triangle curvature sums
   std::vector<double>& residual_;        // buffers' residual
   unsigned long evaluations_ = 0;        // evaluations so far
   // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
-  // coordinates of G'^T s, then with the Jacobian coordinate c's #E columns of G'^T J at
-  // 3 + c #E + a; solved in place (x0 in the first 3 columns).
+  // coordinates of G'^T s, then with the Jacobian coordinate c's K columns of G'^T J at
+  // 3 + c K + a; solved in place (x0 in the first 3 columns).
   double* rhs_ = nullptr;
-  int stride_ = 0;  // of the last evaluation: 3 or 3 (#E + 1) columns rounded up to kLanes
+  int stride_ = 0;  // of the last evaluation: 3 or 3 (K + 1) columns rounded up to kLanes
   // Per chunk (#chunks slices each, summed into the first in chunk order):
-  std::vector<double> jtj_lanes_;        // #E by #E by kLanes: J^T J, per lane
-  std::vector<double> jts_lanes_;        // #E by kLanes: J^T F, per lane
-  std::vector<double> handle_jts_;       // #E: -J^T (handles' part of Q)
-  std::vector<double> curvature_lanes_;  // #E by #E by kLanes: sum <R, d2F>, per lane
+  std::vector<double> jtj_lanes_;        // K by K by kLanes: J^T J, per lane
+  std::vector<double> jts_lanes_;        // K by kLanes: J^T F, per lane
+  std::vector<double> handle_jts_;       // K: -J^T (handles' part of Q)
+  std::vector<double> curvature_lanes_;  // K by K by kLanes: sum <R, d2F>, per lane
   std::vector<float> curvature_scratch_;  // curvature_scratch_size(#E): add_residual_curvature's
   std::vector<double> chunk_energy_;     // 1: the chunk's residual energy
   std::vector<std::vector<int>> chunk_inverted_;  // the chunk's inverted triangles
-  std::vector<double> outer_products_;   // 3 #E by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
-  Eigen::MatrixXd jtj_;                  // #E by #E
-  Eigen::VectorXd jts_;                  // #E: J^T s
+  std::vector<double> outer_products_;   // 3 K by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
+  Eigen::MatrixXd jtj_;                  // K by K
+  Eigen::VectorXd jts_;                  // K: J^T s
 };
 
 }  // namespace meshik

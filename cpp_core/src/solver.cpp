@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <mutex>
 
+#include "blend_regions.h"
 #include "example_set_impl.h"
 #include "gauss_newton.h"
 #include "input_validation.h"
@@ -20,6 +21,8 @@ struct Solver::Impl {
   SolverOptions options;
   std::unique_ptr<PoseSystem> system;
   std::unique_ptr<LinearStart> linear_start;
+  // Spatially varying weights (SolverOptions::regions, vertex_regions), or null for one vector.
+  std::unique_ptr<BlendRegions> regions;
   // Evaluation buffers of finished solves, reused by the next ones (one per concurrent solve).
   std::mutex pool_mutex;
   BuffersPool pool;
@@ -70,6 +73,11 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   const int team = thread_count(options.threads);
   impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
   impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, team);
+  if (!options.vertex_regions.empty())
+    impl_->regions = std::make_unique<BlendRegions>(
+        regions_from_vertex_groups(set, options.vertex_regions, options.region_smoothness));
+  else if (options.regions != 1)
+    impl_->regions = std::make_unique<BlendRegions>(regions_from_examples(*impl_->examples, options.regions, options.region_smoothness));
 }
 
 Solver::~Solver() = default;
@@ -80,18 +88,27 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
                           const ProgressCallback& progress) const {
   const ExampleSet::Impl& set = impl_->examples->impl();
   validate_targets(targets, impl_->handles);
-  if (initial_weights != nullptr) validate_finite(initial_weights, set.num_examples, "initial weight");
+  if (initial_weights != nullptr) validate_finite(initial_weights, num_weights(), "initial weight");
   const SolverOptions& options = impl_->options;
   BuffersLease lease(impl_->pool_mutex, impl_->pool);
-  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization,
-                          targets, lease.buffers(), thread_count(options.threads));
+  const int team = thread_count(options.threads);
   Eigen::VectorXd start;
   if (initial_weights == nullptr) {
     start = impl_->linear_start->weights(targets, options.weight_regularization);
+    if (impl_->regions) {
+      // Regions start from the one global vector that solves the pose without them (from the
+      // linear space's), every region alike: the regions' solve then only lowers that energy.
+      PoseEvaluator global(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
+                           lease.buffers(), team, options.blend);
+      const SolveResult one = gauss_newton(global, set.num_examples, set.num_triangles, start.data(), options, {});
+      start = Eigen::Map<const Eigen::VectorXd>(one.weights.data(), set.num_examples).replicate(num_regions(), 1);
+    }
     initial_weights = start.data();
   }
+  PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
+                          lease.buffers(), team, options.blend, impl_->regions.get());
   SolveResult result =
-      gauss_newton(evaluator, set.num_examples, set.num_triangles, initial_weights, options, progress);
+      gauss_newton(evaluator, evaluator.num_weights(), set.num_triangles, initial_weights, options, progress);
   result.vertices = set.to_user(result.vertices);
   validate_pose_finite(result, targets, impl_->handles);
   for (int& j : result.inverted_triangles) j = set.triangle_of_internal[j];
@@ -102,5 +119,19 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
 const ExampleSet& Solver::examples() const { return *impl_->examples; }
 const std::vector<int>& Solver::handles() const { return impl_->handles; }
 const SolverOptions& Solver::options() const { return impl_->options; }
+int Solver::num_regions() const { return impl_->regions ? impl_->regions->num_regions : 1; }
+int Solver::num_weights() const { return num_regions() * impl_->examples->num_examples(); }
+
+std::vector<int> Solver::triangle_regions() const {
+  const ExampleSet::Impl& set = impl_->examples->impl();
+  std::vector<int> region(set.num_triangles, 0);
+  if (!impl_->regions) return region;
+  const int count = impl_->regions->num_regions;
+  for (int j = 0; j < set.num_triangles; ++j) {
+    const double* share = impl_->regions->share.data() + static_cast<size_t>(j) * count;
+    region[set.triangle_of_internal[j]] = static_cast<int>(std::max_element(share, share + count) - share);
+  }
+  return region;
+}
 
 }  // namespace meshik

@@ -85,6 +85,13 @@ NB_MODULE(_constraints, m) {
       .def_ro("translation", &mc::GroupTarget::translation)
       .def_ro("center", &mc::GroupTarget::center);
   nb::class_<mc::Frame>(m, "Frame").def_ro("name", &mc::Frame::name).def_ro("targets", &mc::Frame::targets);
+  nb::class_<mc::RegionGroup>(m, "RegionGroup")
+      .def_ro("name", &mc::RegionGroup::name)
+      .def_ro("vertices", &mc::RegionGroup::vertices);
+  nb::class_<mc::RegionSetting>(m, "RegionSetting")
+      .def_ro("count", &mc::RegionSetting::count)
+      .def_ro("automatic", &mc::RegionSetting::automatic)
+      .def_ro("groups", &mc::RegionSetting::groups);
   nb::class_<mc::ConstraintDocument>(m, "ConstraintDocument")
       .def_ro("source", &mc::ConstraintDocument::source)
       .def_ro("rest", &mc::ConstraintDocument::rest)
@@ -93,6 +100,9 @@ NB_MODULE(_constraints, m) {
       .def_ro("handles", &mc::ConstraintDocument::handles)
       .def_ro("frames", &mc::ConstraintDocument::frames)
       .def_ro("feature_space", &mc::ConstraintDocument::feature_space)
+      .def_ro("blend", &mc::ConstraintDocument::blend)
+      .def_ro("regions", &mc::ConstraintDocument::regions)
+      .def_ro("region_smoothness", &mc::ConstraintDocument::region_smoothness)
       .def_ro("weight_regularization", &mc::ConstraintDocument::weight_regularization)
       .def_ro("max_iterations", &mc::ConstraintDocument::max_iterations)
       .def_ro("tolerance", &mc::ConstraintDocument::tolerance)

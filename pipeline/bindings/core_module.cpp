@@ -111,6 +111,29 @@ meshik::FeatureSpace parse_feature_space(const std::string& name) {
   throw meshik::InputError("feature_space must be 'nonlinear' or 'linear', got '" + name + "'");
 }
 
+// "affine" or "free" as a Blend; InputError otherwise.
+meshik::Blend parse_blend(const std::string& name) {
+  if (name == "affine") return meshik::Blend::kAffine;
+  if (name == "free") return meshik::Blend::kFree;
+  throw meshik::InputError("blend must be 'affine' or 'free', got '" + name + "'");
+}
+
+// regions: a count (int >= 1), "auto", or a (n,) integer array of vertex groups (-1: none), into
+// options (regions or vertex_regions); InputError otherwise.
+void parse_regions(const nb::object& regions, meshik::SolverOptions& options) {
+  if (nb::isinstance<nb::str>(regions)) {
+    const std::string name = nb::cast<std::string>(regions);
+    if (name != "auto") throw meshik::InputError("regions must be a count, 'auto' or vertex groups, got '" + name + "'");
+    options.regions = meshik::kAutomaticRegions;
+  } else if (nb::isinstance<nb::int_>(regions)) {
+    options.regions = nb::cast<int>(regions);
+  } else {
+    const nb::object array = as_numpy(regions);
+    check_shape(array, "regions", {-1}, "(n,) vertex groups");
+    options.vertex_regions = int_values(array, "regions");
+  }
+}
+
 // "single" or "double" as a FeaturePrecision; InputError otherwise.
 meshik::FeaturePrecision parse_feature_precision(const std::string& name) {
   if (name == "single") return meshik::FeaturePrecision::kSingle;
@@ -237,7 +260,8 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
 PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::object& handles,
                      const std::string& feature_space, double weight_regularization,
                      int max_iterations, double tolerance, const nb::object& progress,
-                     const nb::object& threads) {
+                     const nb::object& threads, const std::string& blend, const nb::object& regions,
+                     double region_smoothness) {
   const nb::object handle_array = as_numpy(handles);
   check_shape(handle_array, "handles", {-1}, "(h,)");
   const std::vector<int> handle_values = int_values(handle_array, "handles");
@@ -247,6 +271,9 @@ PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::ob
   options.max_iterations = max_iterations;
   options.tolerance = tolerance;
   options.threads = thread_option(threads);
+  options.blend = parse_blend(blend);
+  parse_regions(regions, options);
+  options.region_smoothness = region_smoothness;
   PythonProgress python_progress(progress);
   auto solver = python_progress.run([&](const meshik::ProgressCallback& callback) {
     return std::make_unique<meshik::Solver>(set, handle_values, options, callback);
@@ -268,12 +295,12 @@ std::vector<double> weight_values(const nb::handle& value, const char* name, int
 
 // set.blend(weights (k,)) as an (n, 3) array.
 NumpyArray blend(const meshik::ExampleSet& set, const nb::object& weights,
-                 meshik::FeatureSpace space) {
+                 meshik::FeatureSpace space, meshik::Blend how = meshik::Blend::kAffine) {
   const std::vector<double> w = weight_values(weights, "weights", set.num_examples());
   std::vector<double> pose;
   {
     nb::gil_scoped_release release;
-    pose = set.blend(w.data(), space);
+    pose = set.blend(w.data(), space, how);
   }
   return to_numpy(std::move(pose), {static_cast<size_t>(set.num_vertices()), 3});
 }
@@ -287,7 +314,7 @@ PySolveResult solve(const PySolver& self, const nb::object& targets,
       targets, "targets", h, "(" + std::to_string(h) + ", 3) (one row per handle)");
   std::vector<double> start;
   if (!initial_weights.is_none())
-    start = weight_values(initial_weights, "initial_weights", self.examples->num_examples());
+    start = weight_values(initial_weights, "initial_weights", solver.num_weights());
   PythonProgress python_progress(progress);
   meshik::SolveResult result = python_progress.run([&](const meshik::ProgressCallback& callback) {
     return solver.solve(target_values.data(), start.empty() ? nullptr : start.data(), callback);
@@ -327,10 +354,9 @@ NB_MODULE(_core, m) {
            "feature_precision: 'single' (60 bytes per triangle and example; every blend, energy and "
            "pose still computed in double) or 'double' (120 bytes).")
       .def("blend",
-           [](const PyExampleSet& self, const nb::object& weights, const std::string& space) {
-             return blend(*self.core, weights, parse_feature_space(space));
-           },
-           "weights"_a, "feature_space"_a = "nonlinear",
+           [](const PyExampleSet& self, const nb::object& weights, const std::string& space,
+              const std::string& how) { return blend(*self.core, weights, parse_feature_space(space), parse_blend(how)); },
+           "weights"_a, "feature_space"_a = "nonlinear", "blend"_a = "affine",
            "The examples combined with weights (k,), no handles: (n, 3) positions.")
       .def_prop_ro("num_vertices", [](const PyExampleSet& s) { return s.core->num_vertices(); })
       .def_prop_ro("num_triangles", [](const PyExampleSet& s) { return s.core->num_triangles(); })
@@ -365,41 +391,57 @@ NB_MODULE(_core, m) {
               const nb::object& examples, const nb::object& handles,
               const std::string& feature_space, double weight_regularization, int max_iterations,
               double tolerance, const nb::object& progress, const nb::object& threads,
-              const std::string& feature_precision) {
+              const std::string& feature_precision, const std::string& blend, const nb::object& regions,
+              double region_smoothness) {
              PyExampleSet set =
                  make_example_set(rest_vertices, faces, examples, progress, threads, feature_precision);
              new (self) PySolver(make_solver(std::move(set.core), handles, feature_space,
                                              weight_regularization, max_iterations, tolerance,
-                                             progress, threads));
+                                             progress, threads, blend, regions, region_smoothness));
            },
            "rest_vertices"_a, "faces"_a, "examples"_a, "handles"_a,
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
            "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none(),
-           "threads"_a = nb::none(), "feature_precision"_a = "single")
+           "threads"_a = nb::none(), "feature_precision"_a = "single", "blend"_a = "affine",
+           "regions"_a = 1, "region_smoothness"_a = 0.01,
+           "blend: 'affine' (stretches tied to the rest, default) or 'free' (the paper's "
+           "sum_i w_i S_i); regions: 1 (one weight vector), a count of regions clustered from the "
+           "examples, 'auto', or (n,) vertex groups (-1: none); the weights are then (regions, k) "
+           "flattened region-major; region_smoothness: pull between neighbouring regions' weights.")
       .def_static(
           "from_example_set",
           [](const PyExampleSet& set, const nb::object& handles, const std::string& feature_space,
              double weight_regularization, int max_iterations, double tolerance,
-             const nb::object& progress, const nb::object& threads) {
+             const nb::object& progress, const nb::object& threads, const std::string& blend,
+             const nb::object& regions, double region_smoothness) {
             return make_solver(set.core, handles, feature_space, weight_regularization,
-                               max_iterations, tolerance, progress, threads);
+                               max_iterations, tolerance, progress, threads, blend, regions, region_smoothness);
           },
           "example_set"_a, "handles"_a, "feature_space"_a = "nonlinear",
           "weight_regularization"_a = 0.0, "max_iterations"_a = 30, "tolerance"_a = 1e-10,
-          "progress"_a = nb::none(), "threads"_a = nb::none(),
+          "progress"_a = nb::none(), "threads"_a = nb::none(), "blend"_a = "affine", "regions"_a = 1,
+          "region_smoothness"_a = 0.01,
           "A solver sharing example_set's precomputed features. threads: of each solve (None: all "
           "cores; the pose is the same bits for any count).")
       .def("solve", &solve, "targets"_a, "initial_weights"_a = nb::none(),
            "progress"_a = nb::none(),
-           "targets: (h, 3) positions of the handles in order; initial_weights: (k,) warm start "
+           "targets: (h, 3) positions of the handles in order; initial_weights: (num_weights,) warm start "
            "(default: the rest pose, w = 0).")
       .def("blend",
            [](const PySolver& self, const nb::object& weights) {
-             return blend(*self.examples, weights, self.solver->options().feature_space);
+             return blend(*self.examples, weights, self.solver->options().feature_space,
+                          self.solver->options().blend);
            },
            "weights"_a, "The examples combined with weights (k,) in this solver's feature space.")
       .def_prop_ro("handles", [](const PySolver& self) { return index_array(self.solver->handles()); })
       .def_prop_ro("num_examples", [](const PySolver& s) { return s.examples->num_examples(); })
+      .def_prop_ro("num_regions", [](const PySolver& s) { return s.solver->num_regions(); })
+      .def_prop_ro("num_weights", [](const PySolver& s) { return s.solver->num_weights(); })
+      .def_prop_ro("blend_mode", [](const PySolver& s) {
+        return std::string(s.solver->options().blend == meshik::Blend::kFree ? "free" : "affine");
+      })
+      .def_prop_ro("triangle_regions", [](const PySolver& s) { return index_array(s.solver->triangle_regions()); },
+                   "(m,) int64: the region with the largest share of each face")
       .def_prop_ro("num_vertices", [](const PySolver& s) { return s.examples->num_vertices(); })
       .def_prop_ro("feature_space",
                    [](const PySolver& s) {

@@ -94,6 +94,12 @@ def _parser() -> argparse.ArgumentParser:
                                            "report.json into DIR. Skips the job when DIR already holds its complete outputs.")
     pose.add_argument("constraints", metavar="CONSTRAINTS", help="constraint file (JSON, format meshik-constraints version 1)")
     _job_options(pose)
+    pose.add_argument("--blend", choices=("affine", "free"), default=None,
+                      help="override the constraint file's blend of the examples' stretches: affine (tied to the "
+                           "rest pose, default) or free (the paper's)")
+    pose.add_argument("--regions", type=_region_count, default=None, metavar="N",
+                      help="override the constraint file's regions: spatially varying weights over N regions "
+                           "clustered from the examples, or auto (1: one weight vector, the default)")
     pose.set_defaults(run=_run_pose)
 
     batch = commands.add_parser("batch", help="pose many constraint files in parallel on Dask",
@@ -200,7 +206,8 @@ def _run_pose(args) -> int:
     report = pose_job(args.constraints, args.out, simplify=args.simplify, simplifier=args.simplifier, formats=args.formats,
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
                       force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                      glb_targets=args.glb_targets, simplify_first=args.simplify_first)
+                      glb_targets=args.glb_targets, simplify_first=args.simplify_first, blend=args.blend,
+                      regions=args.regions)
     if report.get("skipped") and not args.quiet:
         _print_line(f"{args.out}: outputs already complete (use --force to redo)", sys.stderr)
     return 0
@@ -315,6 +322,19 @@ def _non_negative_int(text: str) -> int:
     if value < 0:
         raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text}")
     return value
+
+
+def _region_count(text: str):
+    """argparse type for --regions: a count >= 1 or "auto"."""
+    if text == "auto":
+        return text
+    try:
+        count = int(text)
+    except ValueError:
+        count = 0
+    if count < 1:
+        raise argparse.ArgumentTypeError(f"expected a region count >= 1 or auto, got {text!r}")
+    return count
 
 
 def _simplify_target(text: str):

@@ -36,7 +36,7 @@ from meshik.inputs.meshio import load_example_set, save_mesh, saveable_format
 from meshik.posing.animation import PosedAnimation, pose_animation
 from meshik.progress_bars import stage_progress
 from meshik.terminal_text import one_line
-from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_poses
+from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_animation
 from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
 REPORT_VERSION = 2
@@ -51,7 +51,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              quantization_bits: int = DEFAULT_QUANTIZATION_BITS, force: bool = False,
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
              glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
-             glb_targets: str = "basis", within=None, simplify_first: bool = False) -> Dict[str, Any]:
+             glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
+             regions: Union[None, int, str] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -61,6 +62,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
               instead (faster per frame, but its weights, and so its motion, may differ);
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
+    blend / regions: override the file's ("affine" or "free"; a region count or "auto");
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
@@ -85,9 +87,14 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     if not 1 <= position_bits <= MAX_POSITION_BITS:
         raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
+    _check_choice("blend", blend, constraint_files.BLENDS + (None,))
     solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
+    if blend:
+        solver_options["blend"] = blend
+    if regions is not None:
+        solver_options["regions"] = regions
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
                   (glb, position_bits, glb_targets) if "glb" in formats else None, simplify_first)
     if not force and is_complete(out_dir, key):
@@ -102,34 +109,35 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     say(f"{len(meshes.rest)} vertices, {len(meshes.faces)} triangles, {len(meshes.examples)} examples, "
         f"{len(resolved.handles)} handle vertices, {len(resolved.frame_names)} frames")
 
-    simplified = None
-    if simplify is not None:
-        target = _target_triangles(simplify, len(meshes.faces))
-        simplified = simplify_meshes(meshes, target, resolved.handles, simplifier)
-        say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
+    target = _target_triangles(simplify, len(meshes.faces)) if simplify is not None else None
+    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier) \
+        if target is not None and simplify_first else None
+    pose_meshes = simplified.meshes if simplified is not None else meshes
+    if target is None or simplify_first:  # else known once the frames are simplified
+        _check_glb_size(constraints_path, formats, len(resolved.frame_names), pose_meshes.rest)
     clock.lap("simplify")
     handles, kept = remap_handles(simplified, resolved.handles)
-    output_count = len(simplified.meshes.rest) if simplified is not None else len(meshes.rest)
-    too_large = glb_size_problem(len(resolved.frame_names), output_count) if "glb" in formats else None
-    if too_large:
-        raise PipelineError(f"{constraints_path}: {too_large}: leave glb out of --format or split the animation")
     inputs = (constraints_path, meshes.rest_path, *meshes.example_paths)
-    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, simplified is not None), inputs)
+    check_not_inputs(out_dir, _output_names(name, formats, resolved.frame_names, target is not None), inputs)
 
-    pose_first = simplified is None or not simplify_first
-    pose_meshes, pose_handles, pose_targets = (meshes, resolved.handles, resolved.targets) if pose_first \
-        else (simplified.meshes, handles, resolved.targets[:, kept])
+    pose_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     with stage_progress(f"{name}: posing", len(resolved.frame_names), quiet, stream) as advance:
-        posed = pose_animation(pose_meshes, pose_handles, pose_targets, solver_options, on_frame=advance,
-                               context=str(constraint_set.rest), features=features if pose_first else None,
+        posed = pose_animation(pose_meshes, handles, resolved.targets[:, kept],
+                               _mesh_solver_options(solver_options, pose_ids, len(meshes.rest), constraints_path),
+                               on_frame=advance,
+                               context=str(constraint_set.rest), features=features if simplified is None else None,
                                threads=threads,
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
-    posed_meshes = simplified.meshes if simplified is not None else meshes
-    if simplified is not None and pose_first:
-        posed_meshes, posed, simplified = _simplify_posed(meshes, simplified, posed)
+    if target is not None and not simplify_first:
+        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier)
+        posed = dataclasses.replace(posed, vertices=frames)
+        handles, kept = remap_handles(simplified, resolved.handles)
+        _check_glb_size(constraints_path, formats, len(resolved.frame_names), simplified.meshes.rest)
         clock.lap("simplify_frames")
-
+    if simplified is not None:
+        say(f"simplified ({simplifier}) to {len(simplified.meshes.rest)} vertices, {len(simplified.meshes.faces)} triangles")
+    posed_meshes = simplified.meshes if simplified is not None else meshes
     vertex_ids = simplified.source_vertex if simplified is not None else np.arange(len(meshes.rest))
     everything = np.concatenate([posed.vertices, posed_meshes.rest[None]])
     grid = animation_grid(everything, quantization_bits)
@@ -155,15 +163,11 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     return dict(report, skipped=False)
 
 
-def _simplify_posed(meshes, simplified: SimplifiedMeshes, posed: PosedAnimation):
-    """(simplified meshes with their rest re-simplified, posed with its frames simplified, simplified with
-    the final count of vertices put back): the full-resolution rest and frames simplified alike
-    (meshik.posing.simplify.simplify_poses)."""
-    poses, snap_mask = simplify_poses(simplified, meshes.faces, np.concatenate([meshes.rest[None], posed.vertices]))
-    if simplified.snap_mask is not None:
-        simplified = dataclasses.replace(simplified, snapped=int(snap_mask.sum()), snap_mask=snap_mask)
-    return (dataclasses.replace(simplified.meshes, rest=poses[0]), dataclasses.replace(posed, vertices=poses[1:]),
-            simplified)
+def _check_glb_size(source: Path, formats: Tuple[str, ...], frames: int, vertices: np.ndarray) -> None:
+    """PipelineError when a .glb is asked for and `frames` frames of these #V by 3 vertices cannot be one."""
+    too_large = glb_size_problem(frames, len(vertices)) if "glb" in formats else None
+    if too_large:
+        raise PipelineError(f"{source}: {too_large}: leave glb out of --format or split the animation")
 
 
 def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
@@ -180,6 +184,17 @@ def parse_formats(formats: Union[str, Sequence[str]]) -> Tuple[str, ...]:
         if name not in DEFAULT_FORMATS and not (name.isalnum() and saveable_format(name)):
             raise PipelineError(f"unknown output format {name!r}: use drc, glb or a mesh format pymeshlab writes (ply, obj, off, stl, ...)")
     return parsed
+
+
+def _mesh_solver_options(solver_options: Dict[str, Any], vertex_ids: np.ndarray, num_vertices: int,
+                         source) -> Dict[str, Any]:
+    """solver_options for the posed mesh: vertex-group regions (name -> rest vertex indices) become
+    meshik.Solver's array of region ids, taken at the posed vertices' rest ids (vertex_ids)."""
+    regions = solver_options.get("regions")
+    if not isinstance(regions, dict):
+        return solver_options
+    ids = constraint_files.region_vertex_groups(regions, num_vertices, source)
+    return dict(solver_options, regions=ids[np.asarray(vertex_ids)])
 
 
 def job_key(constraint_set: constraint_files.ConstraintSet, solver_options: Dict[str, Any], simplify, simplifier: str,

@@ -3,6 +3,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QGridLayout>
 #include <QLabel>
 #include <QListWidget>
 #include <QProgressBar>
@@ -15,6 +16,10 @@
 namespace meshik::edit {
 namespace {
 
+constexpr int kWidth = 320;         // the panel's fixed width: long lines wrap, never widen it
+constexpr int kMaxWeightBars = 12;  // bars shown (a set with more examples shows the first ones)
+constexpr double kExtrapolation = 0.05;  // weights beyond [-this, 1 + this] extrapolate
+
 // A push button that emits `signal` of `dock` when clicked.
 template <typename Signal>
 QPushButton* commandButton(DragDock* dock, const QString& text, const QString& tip, Signal signal) {
@@ -24,19 +29,57 @@ QPushButton* commandButton(DragDock* dock, const QString& text, const QString& t
   return button;
 }
 
+// A wrapping label of fixed height (`lines` text lines), so the widgets below never move.
+QLabel* fixedLabel(QWidget* parent, int lines) {
+  auto* label = new QLabel(parent);
+  label->setWordWrap(true);
+  label->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  label->setFixedHeight(lines * label->fontMetrics().lineSpacing() + 4);
+  return label;
+}
+
 }  // namespace
 
 DragDock::DragDock(QWidget* parent) : QWidget(parent) {
+  setFixedWidth(kWidth);
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(new QLabel(tr("<b>Click</b> a vertex: add a handle; <b>Shift+click</b>: remove it; "
-                                  "<b>drag</b> a handle to pose. Keys: S save constraint file, P save pose, "
-                                  "R reset, C clear."),
-                               this));
-  static_cast<QLabel*>(layout->itemAt(0)->widget())->setWordWrap(true);
+  auto* help = new QLabel(tr("<b>Click</b> a vertex: a handle (ctrl: into the last group; shift: remove). "
+                             "<b>Drag</b> a handle: move its group; <b>R</b>: turn it. Ctrl+Z undo, "
+                             "Ctrl+Shift+Z redo, F add frame, S save constraints, P save pose."),
+                          this);
+  help->setWordWrap(true);
+  layout->addWidget(help);
+
+  // The commands first, in a grid (two per row) that nothing below can shift.
+  struct Command {
+    QString text, tip;
+    void (DragDock::*signal)();
+  };
+  const Command kCommands[] = {
+      {tr("Save constraints..."),
+       tr("The handle groups and the frames (or the targets now, as one frame) as a meshik-constraints file (S)"),
+       &DragDock::saveConstraintFile},
+      {tr("Save pose..."), tr("Save the posed layer to a mesh file (P)"), &DragDock::savePose},
+      {tr("Add frame"), tr("Append the targets now as the next frame (F)"), &DragDock::addKeyframe},
+      {tr("Clear frames"), tr("Forget the frames added so far"), &DragDock::clearKeyframes},
+      {tr("Pose into a new layer"), tr("Copy the current pose into a new layer \"MeshIK pose of ...\" (N)"),
+       &DragDock::poseToNewLayer},
+      {tr("Clear handles"), tr("Remove every handle (undo: Ctrl+Z)"), &DragDock::clearHandles},
+      {QString(), QString(), nullptr},  // an empty cell: Reset sits apart from the other commands
+      {tr("Reset pose"), tr("Handles and mesh back to the rest pose (undo: Ctrl+Z)"), &DragDock::resetPose},
+  };
+  auto* commands = new QGridLayout();
+  int cell = 0;
+  for (const Command& command : kCommands) {
+    if (command.signal)
+      commands->addWidget(commandButton(this, command.text, command.tip, command.signal), cell / 2, cell % 2);
+    ++cell;
+  }
+  layout->addLayout(commands);
 
   layout->addWidget(new QLabel(tr("Example layers"), this));
   examples_ = new QListWidget(this);
-  examples_->setMaximumHeight(110);
+  examples_->setFixedHeight(90);
   layout->addWidget(examples_);
   connect(examples_, &QListWidget::itemChanged, this, &DragDock::examplesChanged);
 
@@ -49,35 +92,38 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   regularization_->setDecimals(4);
   regularization_->setSingleStep(0.01);
   form->addRow(tr("Weight regularization"), regularization_);
+  mirror_ = new QComboBox(this);
+  mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)")});
+  mirror_->setToolTip(tr("New handles get a partner at the vertex nearest their mirror image (within 1% of the "
+                         "diagonal); moves and turns are mirrored"));
+  form->addRow(tr("Mirror"), mirror_);
   layout->addLayout(form);
   connect(feature_space_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
   connect(regularization_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
 
-  layout->addWidget(new QLabel(tr("Weights"), this));
-  weight_bars_ = new QVBoxLayout();
-  layout->addLayout(weight_bars_);
-  handles_ = new QLabel(this);
-  solve_ = new QLabel(this);
-  latency_ = new QLabel(this);
-  error_ = new QLabel(this);
+  handles_ = fixedLabel(this, 1);
+  keyframes_ = fixedLabel(this, 1);
+  solve_ = fixedLabel(this, 1);
+  latency_ = fixedLabel(this, 3);
+  error_ = fixedLabel(this, 3);
   error_->setStyleSheet("color: #c00000");
-  error_->setWordWrap(true);
-  latency_->setWordWrap(true);
-  for (QLabel* label : {handles_, solve_, latency_, error_}) layout->addWidget(label);
+  for (QLabel* label : {handles_, keyframes_, solve_, latency_, error_}) layout->addWidget(label);
 
-  layout->addWidget(commandButton(this, tr("Reset pose"), tr("Handles back to their rest positions (R)"),
-                                  &DragDock::resetPose));
-  layout->addWidget(commandButton(this, tr("Clear handles"), tr("Remove every handle (C)"), &DragDock::clearHandles));
-  layout->addWidget(commandButton(this, tr("Save constraint file..."),
-                                  tr("The handles and their targets as one frame of a meshik-constraints file (S)"),
-                                  &DragDock::saveConstraintFile));
-  layout->addWidget(commandButton(this, tr("Save pose..."), tr("Save the posed layer to a mesh file (P)"),
-                                  &DragDock::savePose));
-  layout->addWidget(commandButton(this, tr("Pose into a new layer"),
-                                  tr("Copy the current pose into a new layer \"MeshIK pose of ...\" (N)"),
-                                  &DragDock::poseToNewLayer));
+  layout->addWidget(new QLabel(tr("Weights (red: negative; orange: past the examples)"), this));
+  for (int i = 0; i < kMaxWeightBars; ++i) {
+    auto* bar = new QProgressBar(this);
+    bar->setRange(0, 1000);
+    bar->setFixedHeight(16);
+    bar->setVisible(false);
+    layout->addWidget(bar);
+    weight_bars_.push_back(bar);
+  }
+  extrapolation_ = fixedLabel(this, 2);
+  extrapolation_->setStyleSheet("color: #b05000");
+  layout->addWidget(extrapolation_);
   layout->addStretch(1);
-  showHandles(0);
+  showHandles(0, 0);
+  showKeyframes(0);
 }
 
 void DragDock::setExampleLayers(const std::vector<std::pair<QString, int>>& layers) {
@@ -98,30 +144,48 @@ std::vector<int> DragDock::checkedExampleLayers() const {
   return ids;
 }
 
+void DragDock::setWeightNames(const std::vector<QString>& names) { weight_names_ = names; }
+
 bool DragDock::linearFeatureSpace() const { return feature_space_->currentIndex() == 1; }
+
+int DragDock::mirrorAxis() const { return mirror_->currentIndex() - 1; }
+
+QString DragDock::cycleMirror() {
+  mirror_->setCurrentIndex((mirror_->currentIndex() + 1) % mirror_->count());
+  return mirror_->currentText();
+}
 
 double DragDock::weightRegularization() const { return regularization_->value(); }
 
 void DragDock::showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles) {
-  while (weight_bars_->count() > static_cast<int>(weights.size())) delete weight_bars_->takeAt(0)->widget();
-  while (weight_bars_->count() < static_cast<int>(weights.size())) {
-    auto* bar = new QProgressBar(this);
-    bar->setRange(0, 1000);
-    bar->setMaximumHeight(16);
-    weight_bars_->addWidget(bar);
+  QStringList past;
+  for (size_t i = 0; i < weight_bars_.size(); ++i) {
+    QProgressBar* bar = weight_bars_[i];
+    bar->setVisible(i < weights.size());
+    if (i >= weights.size()) continue;
+    const double w = weights[i];
+    const QString name = i < weight_names_.size() ? weight_names_[i] : QString::number(i + 1);
+    bar->setValue(static_cast<int>(std::lround(1000.0 * std::clamp(std::abs(w), 0.0, 1.0))));
+    bar->setFormat(name + QString::asprintf("  %+.3f", w));
+    const bool beyond = w < -kExtrapolation || w > 1.0 + kExtrapolation;
+    bar->setStyleSheet(w < 0.0 ? QStringLiteral("QProgressBar::chunk { background: #d04040; }")
+                       : beyond ? QStringLiteral("QProgressBar::chunk { background: #e08000; }")
+                                : QString());
+    if (beyond) past << QStringLiteral("%1 %2").arg(name).arg(w, 0, 'f', 2);
   }
-  for (size_t i = 0; i < weights.size(); ++i) {
-    auto* bar = static_cast<QProgressBar*>(weight_bars_->itemAt(static_cast<int>(i))->widget());
-    bar->setValue(static_cast<int>(std::lround(1000.0 * std::clamp(std::abs(weights[i]), 0.0, 1.0))));
-    bar->setFormat(QString::number(weights[i], 'f', 3));
-  }
-  solve_->setText(tr("%1 iterations, solve %2 ms, %3 inverted triangles")
+  extrapolation_->setText(past.isEmpty() ? QString()
+                                         : tr("Extrapolating past the examples: %1").arg(past.join(", ")));
+  solve_->setText(tr("%1 iterations, solve %2 ms, %3 inverted triangles (red)")
                       .arg(iterations)
                       .arg(solve_ms, 0, 'f', 1)
                       .arg(inverted_triangles));
 }
 
-void DragDock::showHandles(int count) { handles_->setText(tr("%1 handles").arg(count)); }
+void DragDock::showHandles(int count, int groups) {
+  handles_->setText(tr("%1 handles in %2 groups").arg(count).arg(groups));
+}
+
+void DragDock::showKeyframes(int count) { keyframes_->setText(tr("%1 frames").arg(count)); }
 
 void DragDock::showLatency(const QString& text) { latency_->setText(text); }
 

@@ -1,6 +1,8 @@
-// The floating panel of "MeshIK: Drag to Pose": example layers, options, the last solve's
-// readout (weights as bars, iterations, solve time, inverted triangles, drag latency), errors,
-// and the commands. Widgets only: the tool (drag_tool.h) does the work on its signals.
+// The floating panel of "MeshIK: Drag to Pose": the commands first (their places never change),
+// then example layers, options, and the last solve's readout (weights as bars named after their
+// example layers, with their sign; a warning when they extrapolate past the examples; iterations,
+// solve time, inverted triangles, drag latency), the keyframe count, errors. Widgets only: the tool
+// (drag_tool.h) does the work on its signals.
 #pragma once
 
 #include <QString>
@@ -8,12 +10,11 @@
 
 #include <vector>
 
-class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QListWidget;
-class QVBoxLayout;
+class QProgressBar;
 
 namespace meshik::edit {
 
@@ -27,12 +28,19 @@ class DragDock : public QWidget {
   void setExampleLayers(const std::vector<std::pair<QString, int>>& layers);
   // The ids of the checked example layers.
   std::vector<int> checkedExampleLayers() const;
+  // The names of the #E weights the next showPose shows (the example layers' labels).
+  void setWeightNames(const std::vector<QString>& names);
   bool linearFeatureSpace() const;
+  // The "Mirror" option: -1 off, else the axis (0, 1, 2) normal to the mirror plane.
+  int mirrorAxis() const;
+  // Steps the "Mirror" option to the next choice (off, X, Y, Z, off, ...); returns its text.
+  QString cycleMirror();
   double weightRegularization() const;
 
   // The readout of a finished pose: #E weights, Gauss-Newton iterations, solve time, inverted faces.
   void showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles);
-  void showHandles(int count);
+  void showHandles(int count, int groups);
+  void showKeyframes(int count);
   void showLatency(const QString& text);
   // An error in red (empty: none).
   void showError(const QString& text);
@@ -42,6 +50,8 @@ class DragDock : public QWidget {
   void optionsChanged();
   void resetPose();
   void clearHandles();
+  void addKeyframe();
+  void clearKeyframes();
   void saveConstraintFile();
   void savePose();
   void poseToNewLayer();
@@ -49,11 +59,15 @@ class DragDock : public QWidget {
  private:
   QListWidget* examples_;
   QComboBox* feature_space_;
+  QComboBox* mirror_;
   QDoubleSpinBox* regularization_;
-  QVBoxLayout* weight_bars_;
+  std::vector<QProgressBar*> weight_bars_;  // a fixed number, hidden when unused
+  std::vector<QString> weight_names_;
+  QLabel* extrapolation_;
   QLabel* handles_;
   QLabel* solve_;
   QLabel* latency_;
+  QLabel* keyframes_;
   QLabel* error_;
 };
 

@@ -1,7 +1,9 @@
-// The tool's file commands: "Save constraint file..." and "Save pose...".
+// The tool's file commands: "Save constraint file..." (the keyframes, or the handles of the
+// moment as one frame) and "Save pose...".
 #include "drag_tool.h"
 
-#include "constraint_frame_writer.h"
+#include "../layer_arrays.h"
+#include "constraint_frames_writer.h"
 
 #include <common/mlexception.h>
 #include <common/utilities/load_save.h>
@@ -34,17 +36,20 @@ QString DragTool::askSavePath(const QString& title, const QString& file_name, co
 void DragTool::saveConstraintFile() {
   const QString path = askSavePath(tr("Save constraint file"), "drag.json", tr("MeshIK constraint files (*.json)"));
   if (path.isEmpty()) return;
-  DragFrame frame;
-  frame.rest_path = layerFile(restLayer());
-  for (int id : example_ids_) frame.example_paths.push_back(layerFile(document_->getMesh(static_cast<unsigned>(id))));
-  frame.linear_feature_space = panel_ && panel_->linearFeatureSpace();
-  frame.weight_regularization = panel_ ? panel_->weightRegularization() : 0.0;
-  frame.handles = handles_;
-  frame.targets = targets_;
+  DragFrames file;
+  file.rest_path = layerFile(restLayer());
+  for (int id : example_ids_) file.example_paths.push_back(layerFile(document_->getMesh(static_cast<unsigned>(id))));
+  file.linear_feature_space = panel_ && panel_->linearFeatureSpace();
+  file.weight_regularization = panel_ ? panel_->weightRegularization() : 0.0;
+  if (keyframes_.count() > 0) keyframes_.fill(file);
+  else fillOneFrame(file, "drag", handles_, groups_, targets_);
   try {
-    writeConstraintFrame(path.toStdString(), frame);
-    document_->Log.log(GLLogStream::FILTER,
-                       QStringLiteral("MeshIK drag: saved %1 handles to %2").arg(handles_.size()).arg(path));
+    writeConstraintFrames(path.toStdString(), file, rest_positions_.data(), static_cast<int>(rest_positions_.size() / 3));
+    log(QStringLiteral("saved %1 handles in %2 groups, %3 frames to %4")
+            .arg(handles_.size())
+            .arg(file.groups.size())
+            .arg(file.frames.size())
+            .arg(path));
   } catch (const std::exception& error) {  // ConstraintWriteError, or no memory for the text
     report(QString::fromStdString(error.what()));
   }
@@ -58,8 +63,7 @@ void DragTool::savePose() {
     meshlab::saveMeshWithStandardParameters(path, *rest, &document_->Log);
     QStringList weights;  // in full: they are the warm start that reproduces this pose
     for (double w : last_weights_) weights << QString::number(w, 'g', 17);
-    document_->Log.log(GLLogStream::FILTER,
-                       QStringLiteral("MeshIK drag: saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));
+    log(QStringLiteral("saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));
   } catch (const std::exception& error) {  // MLException from MeshLab's IO plugins, and the rest
     report(error.what());
   }

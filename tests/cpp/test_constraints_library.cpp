@@ -170,6 +170,28 @@ TEST(ConstraintLibrary, WrittenFilesReadBackToTheSameTargets) {
   fs::remove_all(dir);
 }
 
+TEST(ConstraintLibrary, WrittenBlendAndRegionSettingsReadBack) {
+  const fs::path dir = scratch_dir("write_regions");
+  const std::string path = (dir / "saved.json").string();
+  mc::WrittenSettings settings;
+  settings.blend = "free";
+  settings.regions = 4;
+  settings.region_smoothness = 0.25;
+  mc::write_constraint_file(path, "rest.obj", {"example_1.obj"}, {{"tip", {7}, {1, 2, 3}}}, "pose-1", settings);
+  mc::ConstraintDocument document = mc::read_constraint_file(path);
+  EXPECT_EQ(document.blend, "free");
+  ASSERT_TRUE(document.regions.has_value());
+  EXPECT_EQ(document.regions->count, 4);
+  EXPECT_FALSE(document.regions->automatic);
+  EXPECT_EQ(document.region_smoothness, 0.25);
+  settings.regions = -1;
+  mc::write_constraint_file(path, "rest.obj", {"example_1.obj"}, {{"tip", {7}, {1, 2, 3}}}, "pose-1", settings);
+  document = mc::read_constraint_file(path);
+  ASSERT_TRUE(document.regions.has_value());
+  EXPECT_TRUE(document.regions->automatic);
+  fs::remove_all(dir);
+}
+
 TEST(ConstraintLibrary, WriterRefusesBadContentAndKeepsTheOldFile) {
   const fs::path dir = scratch_dir("write_bad");
   const std::string path = (dir / "saved.json").string();

@@ -138,9 +138,10 @@ def run_forked(args: Sequence, timeout: float = 60) -> Outcome:
     return Outcome(code, b"".join(chunks).decode("utf-8", "replace"), time.monotonic() - start, left_behind, timed_out)
 
 
-def session_alive(session: int) -> bool:
-    """Whether any process of process group `session` still runs (after a short grace for exits)."""
-    for _ in range(20):
+def session_alive(session: int, grace: float = 5.0) -> bool:
+    """Whether any process of process group `session` still runs `grace` seconds after the command
+    exited (a Dask worker may take a second or two to finish exiting after its batch)."""
+    for _ in range(int(grace / 0.05)):
         try:
             os.killpg(session, 0)
         except ProcessLookupError:

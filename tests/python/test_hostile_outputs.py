@@ -113,3 +113,15 @@ def test_a_users_folder_named_like_staging_survives(work, capsys):
     assert main(["pose", str(work / "in" / "animation.json"), "--out", str(work / "out"), "--quiet"]) == 0
     assert (notes / "mine.txt").read_text() == "keep me"
     assert not [p for p in (work / "out").iterdir() if p.name.startswith(".meshik-partial-") and p != notes]
+
+
+def test_a_frame_that_cannot_be_moved_in_is_named(work):
+    """A folder of the user's at a frame's final name: the commit stops naming that file (before:
+    a message naming no file)."""
+    blocker = work / "out" / "frames" / "0001.drc"
+    blocker.mkdir(parents=True)
+    (blocker / "keep.txt").write_text("mine")
+    before = tree_state(work / "in")
+    outcome = run_forked(["pose", work / "in" / "animation.json", "--out", work / "out", "--quiet", "--format", "drc"])
+    assert_refused(outcome, "frames/0001.drc: cannot move this output into place", work / "in", before, work)
+    assert (blocker / "keep.txt").read_text() == "mine"

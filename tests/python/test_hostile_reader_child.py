@@ -31,9 +31,9 @@ def slow_obj(tmp_path_factory):
     corner = (y[:-1, :-1] * n + x[:-1, :-1]).ravel() + 1
     faces = np.concatenate([np.column_stack([corner, corner + 1, corner + n]),
                             np.column_stack([corner + 1, corner + n + 1, corner + n])])
-    with open(path, "w") as stream:
-        np.savetxt(stream, vertices, fmt="v %d %d %d")
-        np.savetxt(stream, faces, fmt="f %d %d %d")
+    lines = [f"v {x} {y} 0\n" for x, y in vertices[:, :2].astype(int).tolist()]
+    lines += [f"f {a} {b} {c}\n" for a, b, c in faces.tolist()]
+    path.write_text("".join(lines))
     return path
 
 

@@ -12,7 +12,7 @@ from meshik.export import draco as export_draco
 from meshik.export.glb_reader import read_animation_glb
 from meshik.inputs.meshio import load_example_set, load_mesh
 from meshik.pipeline import pose_job
-from meshik.posing.simplify import simplify
+from meshik.posing.simplify import simplify_animation
 from pipeline_clients import decode_with_draco_decoder, validate_and_check_no_errors
 from pipeline_meshes import tube_constraints, write_constraints, write_tube_set
 
@@ -99,7 +99,7 @@ def test_simplified_job_keeps_handles_and_original_ids(shot, tmp_path, simplifie
     report = pose_job(shot["path"], out, simplify=120, simplifier=simplifier, formats=("drc", "obj"), quiet=True)
     meshes = load_example_set(shot["set"]["rest"], shot["set"]["examples"])
     handles = np.array(shot["set"]["bottom"] + shot["set"]["top"])
-    simplified = simplify(meshes, 120, handles, simplifier)
+    simplified, _ = simplify_animation(meshes, solver_reference(shot["path"])[0], 120, handles, simplifier)
     assert report["simplification"]["triangles"] == len(simplified.meshes.faces) <= 120
     decoded = export_draco.decode((out / "frames" / "0005.drc").read_bytes())
     assert sorted(decoded.vertex_ids) == sorted(simplified.source_vertex)

@@ -70,14 +70,66 @@ void read_mesh_names(const JsonValue& top, ConstraintDocument& document, Violati
       document.examples.push_back(*name);
 }
 
-void read_options(const JsonValue& top, ConstraintDocument& document, ViolationList& problems) {
-  if (const JsonValue* value = top.find("feature_space"))
-    if (auto space = expect_string(*value, "feature_space", problems)) {
-      if (*space == "nonlinear" || *space == "linear")
-        document.feature_space = *space;
-      else
-        problems.add("feature_space", "expected \"nonlinear\" or \"linear\", got \"" + *space + "\"");
+// "regions": a count >= 1, "auto", or an object of named vertex-index lists (no vertex twice).
+std::optional<RegionSetting> read_regions(const JsonValue& value, ViolationList& problems) {
+  RegionSetting setting;
+  if (value.kind == JsonValue::Kind::String) {
+    if (value.text != "auto") {
+      problems.add("regions", "expected a count, \"auto\" or vertex groups, got \"" + value.text + "\"");
+      return std::nullopt;
     }
+    setting.automatic = true;
+    return setting;
+  }
+  if (value.kind == JsonValue::Kind::Number) {
+    const auto count = expect_int(value, "regions", problems, 1, "a region count");
+    if (!count) return std::nullopt;
+    setting.count = *count;
+    return setting;
+  }
+  if (!expect_object(value, "regions", problems)) return std::nullopt;
+  std::map<std::int64_t, std::string> owner;
+  for (const auto& [name, vertices] : value.members) {
+    if (name.rfind('_', 0) == 0) continue;  // a note
+    const std::string path = "regions." + name;
+    if (!expect_list(vertices, path, problems, true)) return std::nullopt;
+    RegionGroup group{name, {}};
+    for (std::size_t i = 0; i < vertices.elements.size(); ++i) {
+      const auto vertex = expect_int(vertices.elements[i], child_path(path, i), problems, 0, "a vertex index");
+      if (!vertex) return std::nullopt;
+      if (!owner.emplace(*vertex, name).second) {
+        problems.add(child_path(path, i), "vertex " + std::to_string(*vertex) + " is already in region \"" +
+                                              owner[*vertex] + "\"");
+        return std::nullopt;
+      }
+      group.vertices.push_back(*vertex);
+    }
+    setting.groups.push_back(std::move(group));
+  }
+  if (setting.groups.empty()) {
+    problems.add("regions", "expected at least one vertex group");
+    return std::nullopt;
+  }
+  return setting;
+}
+
+// The top-level member `name`, when present, as one of two strings (first or second).
+std::optional<std::string> read_choice(const JsonValue& top, const std::string& name, const std::string& first,
+                                       const std::string& second, ViolationList& problems) {
+  const JsonValue* value = top.find(name);
+  if (value == nullptr) return std::nullopt;
+  const auto text = expect_string(*value, name, problems);
+  if (!text || *text == first || *text == second) return text;
+  problems.add(name, "expected \"" + first + "\" or \"" + second + "\", got \"" + *text + "\"");
+  return std::nullopt;
+}
+
+void read_options(const JsonValue& top, ConstraintDocument& document, ViolationList& problems) {
+  document.blend = read_choice(top, "blend", "affine", "free", problems);
+  if (const JsonValue* value = top.find("regions")) document.regions = read_regions(*value, problems);
+  if (const JsonValue* value = top.find("region_smoothness"))
+    document.region_smoothness = expect_number(*value, "region_smoothness", problems, 0.0);
+  document.feature_space = read_choice(top, "feature_space", "nonlinear", "linear", problems);
   if (const JsonValue* value = top.find("weight_regularization"))
     document.weight_regularization = expect_number(*value, "weight_regularization", problems, 0.0);
   if (const JsonValue* value = top.find("max_iterations")) {
@@ -352,7 +404,9 @@ ConstraintDocument read_document(const JsonValue& top, const std::string& source
   document.source = source;
   if (!expect_object(top, "", problems)) return document;
   check_members(top, "", {"format", "version", "rest", "examples", "handles", "frames"},
-                {"$schema", "feature_space", "weight_regularization", "max_iterations", "tolerance", "fps"}, problems);
+                {"$schema", "feature_space", "blend", "regions", "region_smoothness", "weight_regularization",
+                 "max_iterations", "tolerance", "fps"},
+                problems);
   read_format(top, problems);
   read_mesh_names(top, document, problems);
   KnownGroups groups;

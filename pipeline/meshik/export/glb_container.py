@@ -5,6 +5,7 @@ MeshoptBinaryBuilder stores each buffer view compressed with EXT_meshopt_compres
 itself lives in a data-less fallback buffer (buffer 1) and its extension points at the encoded
 bytes in the GLB's binary chunk (buffer 0).
 """
+import functools
 import json
 import struct
 from typing import Any, Callable, Dict, List, Tuple
@@ -152,7 +153,9 @@ def split_glb(data: bytes) -> Tuple[Dict[str, Any], bytes]:
 
 def view_reader(document: Dict[str, Any], binary: bytes) -> Callable[[int], bytes]:
     """A function giving the (decoded) bytes of buffer view `index`; buffer 0 is the GLB binary
-    chunk, views with EXT_meshopt_compression are decoded from it."""
+    chunk, views with EXT_meshopt_compression are decoded from it, once each (every morph target's
+    accessor lies in one shared view: decoding it per accessor made reading quadratic in the frames)."""
+    @functools.lru_cache(maxsize=None)
     def view_bytes(index: int) -> bytes:
         view = document["bufferViews"][index]
         compressed = view.get("extensions", {}).get(MESHOPT_EXTENSION)

@@ -27,6 +27,7 @@ from meshik.outputs.safe_paths import utf8_name
 FORMAT_NAME = "meshik-constraints"
 FORMAT_VERSION = 1
 FEATURE_SPACES = ("nonlinear", "linear")
+BLENDS = ("affine", "free")
 DEFAULT_FPS = 24.0
 SCHEMA_PATH = Path(__file__).resolve().parents[1] / "schema" / "meshik-constraints-1.schema.json"
 
@@ -86,6 +87,10 @@ class ConstraintSet:
     handles: Dict[str, HandleSpec]
     frames: Tuple[Frame, ...]
     feature_space: Optional[str] = None
+    blend: Optional[str] = None
+    # a region count, "auto", or vertex groups: name -> rest vertex indices
+    regions: Union[None, int, str, Dict[str, Tuple[int, ...]]] = None
+    region_smoothness: Optional[float] = None
     weight_regularization: Optional[float] = None
     max_iterations: Optional[int] = None
     tolerance: Optional[float] = None
@@ -93,8 +98,10 @@ class ConstraintSet:
     document: Any = field(default=None, repr=False, compare=False)
 
     def solver_options(self) -> Dict[str, Any]:
-        """The solver keyword arguments the file sets (feature_space, weight_regularization, ...)."""
-        names = ("feature_space", "weight_regularization", "max_iterations", "tolerance")
+        """The solver keyword arguments the file sets (feature_space, blend, regions, ...); vertex-group
+        regions stay a dict here (region_vertex_groups turns them into meshik.Solver's array)."""
+        names = ("feature_space", "blend", "regions", "region_smoothness", "weight_regularization", "max_iterations",
+                 "tolerance")
         return {name: getattr(self, name) for name in names if getattr(self, name) is not None}
 
 
@@ -175,8 +182,34 @@ def _constraint_set(document, source: Path) -> ConstraintSet:
         handles={group.name: _handle_spec(group) for group in document.handles},
         frames=tuple(Frame(name=frame.name, targets={target.group: _target_spec(target) for target in frame.targets})
                      for frame in document.frames),
-        feature_space=document.feature_space, weight_regularization=document.weight_regularization,
+        feature_space=document.feature_space, blend=document.blend, regions=_regions(document.regions),
+        region_smoothness=document.region_smoothness, weight_regularization=document.weight_regularization,
         max_iterations=document.max_iterations, tolerance=document.tolerance, fps=document.fps, document=document)
+
+
+def region_vertex_groups(groups: Dict[str, Sequence[int]], num_vertices: int, source) -> np.ndarray:
+    """#V region ids (-1: in no group) of vertex groups (name -> rest vertex indices), in the
+    groups' order. Raises ConstraintError naming the file (source) and group of an index out of range."""
+    regions = np.full(num_vertices, -1, dtype=np.int64)
+    for number, (name, vertices) in enumerate(groups.items()):
+        vertices = np.asarray(vertices, dtype=np.int64)
+        bad = vertices[(vertices < 0) | (vertices >= num_vertices)]
+        if len(bad):
+            raise ConstraintError(f"{source}: regions.{name}: vertex {int(bad[0])} is out of range "
+                                  f"(the rest mesh has {num_vertices} vertices)")
+        regions[vertices] = number
+    return regions
+
+
+def _regions(setting) -> Union[None, int, str, Dict[str, Tuple[int, ...]]]:
+    """The file's "regions" (the library's RegionSetting or None) as ConstraintSet.regions."""
+    if setting is None:
+        return None
+    if setting.automatic:
+        return "auto"
+    if setting.groups:
+        return {group.name: tuple(group.vertices) for group in setting.groups}
+    return int(setting.count)
 
 
 def _handle_spec(group) -> HandleSpec:

@@ -185,7 +185,6 @@ class StagedOutput:
         report = dict(report, outputs=dict(sorted(self.files.items())),
                       output_sha256=dict(sorted(self.digests.items())))
         try:
-            (self.staging / _STAGING_MARKER).unlink()  # the folder becomes (or fills) the destination
             (self.staging / REPORT_NAME).write_text(json.dumps(report, indent=1))
             stale = _provably_written(self.destination, previous, set(self.files), inputs)
             if not (self.swapping and self._swap(stale)):
@@ -203,13 +202,18 @@ class StagedOutput:
         it; the old folder then lies at the staging folder's name, removed by commit().
         """
         dropped = {path.relative_to(self.destination).as_posix() for path in stale}
-        dropped |= set(self.files) | {REPORT_NAME, _REPLACED_REPORT_NAME}
+        dropped |= set(self.files) | {REPORT_NAME, _REPLACED_REPORT_NAME, _STAGING_MARKER}
+        marker = self.staging / _STAGING_MARKER
         try:
             if self.destination.is_dir():
                 carry_over(self.destination, self.staging, dropped.__contains__)
+            marker.unlink()  # the staging folder becomes the destination
             swap_in(self.staging, self.destination)
         except SwapUnavailable:
+            marker.write_bytes(b"")
             return False
+        if self.staging.is_dir():  # the old folder, now at the staging name: stale if a kill comes before its removal
+            marker.write_bytes(b"")
         return True
 
     def _move_file_by_file(self, stale: Iterable[Path]) -> None:

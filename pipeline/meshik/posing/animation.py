@@ -13,7 +13,7 @@ from meshik.inputs.meshio import ExampleMeshes
 class PosedAnimation:
     """The solver's output for every frame.
 
-    vertices: #frames by #V by 3; weights: #frames by #E; iterations, residuals, converged,
+    vertices: #frames by #V by 3; weights: #frames by #regions #E; iterations, residuals, converged,
     inverted_triangles (how many faces the pose turns over against their blended deformation),
     solve_seconds: #frames each; precompute_seconds: example-set features plus the factorisation.
     """
@@ -35,7 +35,7 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     the previous frame's weights.
 
     handles: #H vertex indices; targets: #frames by #H by 3; solver_options: keyword arguments of
-    meshik.Solver (feature_space, weight_regularization, max_iterations, tolerance); on_frame: called
+    meshik.Solver (feature_space, blend, regions, weight_regularization, ...); on_frame: called
     after each frame; context: prefix for error messages about the meshes (e.g. the rest mesh's file);
     features(threads): returns the meshes' meshik.ExampleSet (e.g. kept by an ExampleSetCache); by
     default it is built here; frame_labels: #frames prefixes for a frame's errors (default "frame
@@ -56,7 +56,7 @@ def pose_animation(meshes: ExampleMeshes, handles: np.ndarray, targets: np.ndarr
     precompute = time.perf_counter() - start
     frames, count = len(targets), len(meshes.rest)
     vertices = np.empty((frames, count, 3))
-    weights = np.empty((frames, len(meshes.examples)))
+    weights = np.empty((frames, solver.num_weights))
     iterations, residuals = np.empty(frames, dtype=np.int64), np.empty(frames)
     converged, seconds = np.empty(frames, dtype=bool), np.empty(frames)
     inverted = np.empty(frames, dtype=np.int64)

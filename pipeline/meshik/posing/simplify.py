@@ -10,9 +10,9 @@ Two simplifiers:
   of the original vertices, so every pose lies exactly on its own vertices.
 
 Both return a SimplifiedMeshes: the simplified example set and the vertex correspondence.
-simplify_poses applies the same simplification to any other pose of the full mesh (e.g. every
-frame posed at full resolution): the collapses replayed with the same guard ("fast"), or the
-kept vertices' positions ("openmesh").
+simplify_animation simplifies an animation posed at full resolution together with its example set:
+its frames count as further poses (in the OpenMesh quadric and in the fast simplifier's guard), so
+every simplified frame is its full frame simplified like the examples.
 """
 from dataclasses import dataclass, replace
 from typing import Optional, Tuple
@@ -38,17 +38,11 @@ class SimplifiedMeshes:
     source_vertex:   #S: the original vertex each simplified vertex stands for (it lies on it in
                      every pose unless the fast simplifier kept its replayed position)
     snapped:         how many vertices the fast simplifier put back on an original vertex
-    collapses:       the fast simplifier's edge collapses (fast-simplification's #C by 2), None for "openmesh"
-    snap_mask:       #S: which vertices the fast simplifier put back (None for "openmesh")
-    tolerance:       the fast simplifier's distance beyond which a replayed vertex is put back
     """
     meshes: ExampleMeshes
     vertex_map: np.ndarray
     source_vertex: np.ndarray
     snapped: int = 0
-    collapses: Optional[np.ndarray] = None
-    snap_mask: Optional[np.ndarray] = None
-    tolerance: float = 0.0
 
 
 def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, method: str = "fast",
@@ -78,53 +72,40 @@ def simplify_fast(meshes: ExampleMeshes, target_triangles: int, handles: np.ndar
     faces = meshes.faces
     poses = (meshes.rest,) + meshes.examples
     _, _, collapses = fast_simplification.simplify(meshes.rest, faces, target_count=target_triangles, return_collapses=True)
-    points, simplified_faces, vertex_map = fast_simplification.replay_simplification(meshes.rest, faces, collapses)
-    vertex_map = np.asarray(vertex_map, dtype=np.int64)
+    replayed = []
+    for pose in poses:
+        points, simplified_faces, vertex_map = fast_simplification.replay_simplification(pose, faces, collapses)
+        replayed.append(points)
     source_vertex = _representatives(vertex_map, len(points), collapses[:, 1], handles)
     snap = np.zeros(len(points), dtype=bool)
     snap[vertex_map[handles]] = True
-    tolerance = surface_tolerance * _mean_edge_length(points, simplified_faces)
-    positions, snap = _replay_guarded(np.stack(poses), faces, collapses, vertex_map, source_vertex, snap, tolerance)
-    simplified = replace(meshes, rest=positions[0], faces=np.asarray(simplified_faces, dtype=np.int64),
-                         examples=tuple(positions[1:]))
-    return SimplifiedMeshes(meshes=simplified, vertex_map=vertex_map, source_vertex=source_vertex,
-                            snapped=int(snap.sum()), collapses=collapses, snap_mask=snap, tolerance=tolerance)
-
-
-def simplify_poses(simplified: SimplifiedMeshes, faces: np.ndarray, poses: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-    """The simplification of other poses of the full mesh, as `simplified` did it to its example set.
-
-    faces: #F by 3 full-resolution triangles; poses: #P by #V by 3 full-resolution positions (e.g.
-    the rest pose followed by every posed frame). Returns (#P by #S by 3 positions on the simplified
-    triangles, #S mask of the vertices put back on their original vertex). "openmesh": the kept
-    vertices' positions, bit for bit. "fast": the collapses replayed on every pose; a vertex put back
-    in the example set, or landing farther than the tolerance from its own patch in any of these
-    poses, is put back on its original vertex in all of them alike (no vertex switches between
-    frames), so handles sit on their own positions.
-    """
-    poses = np.asarray(poses, dtype=np.float64)
-    if simplified.collapses is None:
-        return poses[:, simplified.source_vertex], np.zeros(len(simplified.source_vertex), dtype=bool)
-    return _replay_guarded(poses, faces, simplified.collapses, simplified.vertex_map, simplified.source_vertex,
-                           simplified.snap_mask, simplified.tolerance)
-
-
-def _replay_guarded(poses: np.ndarray, faces: np.ndarray, collapses: np.ndarray, vertex_map: np.ndarray,
-                    source_vertex: np.ndarray, snap: np.ndarray, tolerance: float) -> Tuple[np.ndarray, np.ndarray]:
-    """Replay the collapses on every pose and put vertices back on their original vertex.
-
-    poses: #P by #V by 3; vertex_map: #V original -> simplified; source_vertex: #S; snap: #S vertices
-    put back whatever their distance; tolerance: put back too any vertex farther than this from the
-    original triangles it stands for, in any pose. Returns (#P by #S by 3 positions, #S final mask).
-    """
-    import fast_simplification
-
-    replayed = np.stack([fast_simplification.replay_simplification(pose, faces, collapses)[0] for pose in poses])
-    snap = snap.copy()
+    tolerance = surface_tolerance * _mean_edge_length(replayed[0], simplified_faces)
     patches = _patch_pairs(faces, vertex_map)
     for pose, points in zip(poses, replayed):
         snap |= ~(_distance_to_own_patch(points, pose, faces, vertex_map, patches) <= tolerance)  # NaN too
-    return np.where(snap[None, :, None], poses[:, source_vertex], replayed), snap
+    positions = [np.where(snap[:, None], pose[source_vertex], points) for pose, points in zip(poses, replayed)]
+    simplified = replace(meshes, rest=positions[0], faces=np.asarray(simplified_faces, dtype=np.int64),
+                         examples=tuple(positions[1:]))
+    return SimplifiedMeshes(meshes=simplified, vertex_map=np.asarray(vertex_map, dtype=np.int64),
+                            source_vertex=source_vertex, snapped=int(snap.sum()))
+
+
+def simplify_animation(meshes: ExampleMeshes, frames: np.ndarray, target_triangles: int, handles: np.ndarray,
+                       method: str = "fast") -> Tuple[SimplifiedMeshes, np.ndarray]:
+    """Simplify an example set and an animation posed from it at full resolution, alike.
+
+    frames: #frames by #V by 3 posed positions. The frames join the examples as further poses (the
+    OpenMesh quadric sums over them; the fast simplifier's collapses, chosen on the rest pose, are
+    replayed on them with the same guard), so each simplified frame is the simplification of its
+    full frame. Returns (the simplified example set, #frames by #S by 3 simplified frames).
+    Raises PipelineError as simplify does.
+    """
+    count = len(meshes.examples)
+    together = replace(meshes, examples=tuple(meshes.examples) + tuple(np.asarray(frames, dtype=np.float64)))
+    simplified = simplify(together, target_triangles, handles, method)
+    poses = simplified.meshes.examples
+    examples = replace(simplified.meshes, examples=poses[:count])
+    return replace(simplified, meshes=examples), np.stack(poses[count:])
 
 
 def _representatives(vertex_map: np.ndarray, count: int, removed: np.ndarray, handles: np.ndarray) -> np.ndarray:

@@ -38,7 +38,7 @@ void SolveWorker::post(SolveRequest request) {
       ++counts_.coalesced;
       request.moves += pending_->moves;
       request.first_event = std::min(request.first_event, pending_->first_event);
-      request.cold_start = request.cold_start || pending_->cold_start;
+      if (!request.start_weights) request.start_weights = std::move(pending_->start_weights);
       request.quick = request.quick && pending_->quick;  // a full request stays full
     }
     pending_ = std::move(request);
@@ -91,7 +91,7 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
   SolveOutcome outcome;
   outcome.request = request;
   try {
-    if (request.cold_start) warm_weights_.clear();
+    if (request.start_weights) warm_weights_ = *request.start_weights;
     const Solver& solver = solverFor(request, outcome);
     const Clock::time_point start = Clock::now();
     outcome.result = solver.solve(request.targets.data(), warm_weights_.empty() ? nullptr : warm_weights_.data());

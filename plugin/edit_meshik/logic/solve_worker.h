@@ -32,7 +32,9 @@ using Clock = std::chrono::steady_clock;
 struct SolveRequest {
   std::vector<int> handles;     // #H vertex indices
   std::vector<double> targets;  // #H by 3 row-major targets, in the order of handles
-  bool cold_start = false;      // forget the warm-start weights first (after "Reset pose")
+  // Set: start from these #E weights instead of the previous pose's (empty: from the rest pose,
+  // after "Reset pose"; the weights of an undone pose after undo or redo).
+  std::optional<std::vector<double>> start_weights;
   bool quick = false;           // one Gauss-Newton step (during a drag) instead of convergence
   int moves = 1;                // mouse moves folded into this request
   Clock::time_point first_event = Clock::now();  // when the oldest of them happened

@@ -3,6 +3,7 @@
 
 #include "screen_projection.h"
 
+#include <functional>
 #include <vector>
 
 namespace meshik::edit {
@@ -20,5 +21,13 @@ int pickVertex(const ScreenProjection& projection, const std::vector<double>& ve
 // (the front one of equally near ones). Returns its position in `points`, or -1.
 int pickHandle(const ScreenProjection& projection, const std::vector<double>& points, double x, double y,
                double radius);
+
+// The vertices (of #V by 3 row-major `vertices`) drawn inside the window rectangle with corners
+// (x0, y0) and (x1, y1) that lie on the visible surface: within `tolerance` (a distance in mesh
+// units) of the surface point the depth buffer shows at their pixel. `surface_depth(px, py)` reads
+// the depth buffer at window pixel (px, py) (1 or more: nothing drawn). Ascending indices.
+std::vector<int> pickVerticesInRectangle(const ScreenProjection& projection, const std::vector<double>& vertices,
+                                         double x0, double y0, double x1, double y1,
+                                         const std::function<double(int, int)>& surface_depth, double tolerance);
 
 }  // namespace meshik::edit

@@ -1,9 +1,15 @@
 // The GL-free logic of the MeshLab tool "MeshIK: Drag to Pose" (plugin/edit_meshik/logic):
 // projection and picking on a known view, the view-plane drag, the coalescing solve worker
-// (with the real solver), the constraint-file writer's checks and latency statistics.
-#include "constraint_frame_writer.h"
+// (with the real solver), rotation of handle groups, the rigid fit, the keyframe list, the
+// constraint-file writer's checks and latency statistics.
+#include "constraint_frames_writer.h"
+#include "group_rotation.h"
+#include "keyframe_list.h"
 #include "meshik/constraints/constraint_file.h"
+#include "mirror_pairing.h"
 #include "latency_stats.h"
+#include "pose_state.h"
+#include "rigid_fit.h"
 #include "screen_projection.h"
 #include "solve_worker.h"
 #include "test_meshik_support.h"
@@ -76,6 +82,22 @@ TEST(VertexPicking, PicksTheHandleMarkerNearestTheClick) {
   const WindowPoint third = view.project(&handles[6]);
   EXPECT_EQ(meshik::edit::pickHandle(view, handles, third.x, third.y + 7, 8.0), 2);
   EXPECT_EQ(meshik::edit::pickHandle(view, handles, third.x, third.y + 20, 8.0), -1);
+}
+
+// Three vertices inside a rectangle, one hidden behind the front one (the depth buffer shows the
+// front surface there), one outside: the rectangle takes the visible ones inside it.
+TEST(VertexPicking, ARectangleTakesTheVisibleVerticesInsideIt) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> vertices = {0, 0, 1, 0, 0, -1, 0.3, 0.2, 0, 3, 0, 0};
+  const WindowPoint front = view.project(&vertices[0]), side = view.project(&vertices[6]);
+  // The depth buffer: the front vertex's depth around it, the side vertex's depth elsewhere.
+  const auto depth = [&](int x, int y) {
+    return std::abs(x - front.x) < 3 && std::abs(y - front.y) < 3 ? front.depth : side.depth;
+  };
+  const std::vector<int> picked = meshik::edit::pickVerticesInRectangle(view, vertices, front.x - 20, front.y - 20,
+                                                                        side.x + 20, side.y + 20, depth, 0.05);
+  EXPECT_EQ(picked, (std::vector<int>{0, 2}));
+  EXPECT_TRUE(meshik::edit::pickVerticesInRectangle(view, vertices, 0, 0, 5, 5, depth, 0.05).empty());
 }
 
 TEST(ViewPlaneDrag, TheGrabbedTargetFollowsTheCursorAtItsDepthAndTheGroupMovesAlong) {
@@ -237,24 +259,30 @@ TEST(SolveWorker, ASolveTheCoreRefusesComesBackAsAnErrorAndTheWorkerGoesOn) {
   EXPECT_EQ(fine->result.vertices.size(), scene.meshes.rest.size());
 }
 
-meshik::edit::DragFrame someFrame() {
-  meshik::edit::DragFrame frame;
-  frame.rest_path = "/data/rest \"quoted\".obj";
-  frame.example_paths = {"/data/a.obj", "/data/b.obj"};
-  frame.handles = {4, 9};
-  frame.targets = {0.1, 0.2, 1.0 / 3.0, -5, 6, 7};
-  return frame;
+// A one-group, one-frame file of the handles 4 and 9 (no rest mesh given: positions only).
+meshik::edit::DragFrames someFrames() {
+  meshik::edit::DragFrames file;
+  file.rest_path = "/data/rest \"quoted\".obj";
+  file.example_paths = {"/data/a.obj", "/data/b.obj"};
+  meshik::edit::fillOneFrame(file, "drag", {4, 9}, {1, 1}, {0.1, 0.2, 1.0 / 3.0, -5, 6, 7});
+  return file;
 }
 
-TEST(ConstraintFrameWriter, RefusesANonFiniteTargetNamingTheHandleAndWritesNothing) {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "meshik_edit_writer_test";
+// A fresh empty folder under the temporary directory.
+std::filesystem::path emptyFolder(const std::string& name) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
+  return folder;
+}
+
+TEST(ConstraintFramesWriter, RefusesANonFiniteTargetNamingTheHandleAndWritesNothing) {
+  const std::filesystem::path folder = emptyFolder("meshik_edit_writer_test");
   const std::string path = (folder / "drag.json").string();
-  meshik::edit::DragFrame frame = someFrame();
-  frame.targets[4] = std::nan("");
+  meshik::edit::DragFrames file = someFrames();
+  file.frames[0].targets[0][4] = std::nan("");
   try {
-    meshik::edit::writeConstraintFrame(path, frame);
+    meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
     FAIL() << "no error";
   } catch (const meshik::edit::ConstraintWriteError& error) {
     EXPECT_NE(std::string(error.what()).find("vertex 9 is not finite"), std::string::npos) << error.what();
@@ -262,15 +290,24 @@ TEST(ConstraintFrameWriter, RefusesANonFiniteTargetNamingTheHandleAndWritesNothi
   }
   EXPECT_TRUE(std::filesystem::is_empty(folder));
 
-  frame = someFrame();
-  frame.handles = {4, 4};
-  EXPECT_THROW(meshik::edit::writeConstraintFrame(path, frame), meshik::edit::ConstraintWriteError);
-  frame = someFrame();
-  frame.rest_path.clear();
-  EXPECT_THROW(meshik::edit::writeConstraintFrame(path, frame), meshik::edit::ConstraintWriteError);
+  file = someFrames();
+  file.groups[0].vertices = {4, 4};
+  EXPECT_THROW(meshik::edit::writeConstraintFrames(path, file, nullptr, 0), meshik::edit::ConstraintWriteError);
+  file = someFrames();
+  file.rest_path.clear();
+  EXPECT_THROW(meshik::edit::writeConstraintFrames(path, file, nullptr, 0), meshik::edit::ConstraintWriteError);
+  const std::vector<double> three_vertices(9, 0.0);
+  file = someFrames();
+  try {
+    meshik::edit::writeConstraintFrames(path, file, three_vertices.data(), 3);
+    FAIL() << "vertex 4 of 3";
+  } catch (const meshik::edit::ConstraintWriteError& error) {
+    EXPECT_NE(std::string(error.what()).find("vertex 4 is not on the rest mesh (3 vertices)"), std::string::npos)
+        << error.what();
+  }
 
-  const meshik::edit::DragFrame saved = someFrame();
-  meshik::edit::writeConstraintFrame(path, saved);
+  const meshik::edit::DragFrames saved = someFrames();
+  meshik::edit::writeConstraintFrames(path, saved, nullptr, 0);
   const meshik::constraints::ConstraintDocument document = meshik::constraints::read_constraint_file(path);
   EXPECT_EQ(document.rest, saved.rest_path);
   EXPECT_EQ(document.examples, saved.example_paths);
@@ -278,10 +315,165 @@ TEST(ConstraintFrameWriter, RefusesANonFiniteTargetNamingTheHandleAndWritesNothi
   EXPECT_EQ(document.max_iterations, std::optional<std::int64_t>(saved.max_iterations));
   ASSERT_EQ(document.frames.size(), 1u);
   ASSERT_EQ(document.frames[0].targets.size(), 1u);
-  EXPECT_EQ(document.frames[0].targets[0].positions, saved.targets) << "every target reads back exactly";
+  EXPECT_EQ(document.frames[0].targets[0].positions, saved.frames[0].targets[0]) << "every target reads back exactly";
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()), 1)
       << "no temporary file left";
   std::filesystem::remove_all(folder);
+}
+
+// A view looking down -z: a dial turned counter-clockwise on the screen turns the group
+// counter-clockwise about the view axis (+z here); the centre stays; others do not move.
+TEST(GroupRotation, ADialTurnsTheGroupAboutItsCentreAsTheCursorGoesRound) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> targets = {1, 0, 0, -1, 0, 0, 0, 2, 0};
+  const WindowPoint right = view.project(&targets[0]);
+  meshik::edit::GroupRotation rotation(view, targets, {0, 1}, right.x, right.y);
+  EXPECT_NEAR(rotation.centre()[0], 0.0, 1e-12);
+  const auto axis = rotation.axisVector();
+  EXPECT_NEAR(axis[2], 1.0, 1e-9) << "towards the viewer";
+  const WindowPoint centre = view.project(rotation.centre().data());
+  // A quarter turn: from the right of the centre to above it.
+  const double degrees = rotation.dialDegrees(centre.x, centre.y + (right.x - centre.x));
+  EXPECT_NEAR(degrees, 90.0, 1e-6);
+  const std::vector<double> turned = rotation.targetsTurnedBy(degrees);
+  EXPECT_NEAR(turned[0], 0.0, 1e-6);
+  EXPECT_NEAR(turned[1], 1.0, 1e-6);
+  EXPECT_NEAR(turned[3], 0.0, 1e-6);
+  EXPECT_NEAR(turned[4], -1.0, 1e-6);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(turned[6 + k], targets[6 + k]) << "not in the group";
+  EXPECT_EQ(rotation.dialDegrees(centre.x + 1, centre.y), 0.0) << "at the centre the dial means nothing";
+}
+
+TEST(GroupRotation, ALockedAxisTurnsAboutThatWorldAxisAndTypedDegreesAreExact) {
+  const ScreenProjection view = cameraOnZAxis();
+  const std::vector<double> targets = {0, 1, 0, 0, -1, 0};
+  meshik::edit::GroupRotation rotation(view, targets, {0, 1}, 400, 300);
+  rotation.setAxis(meshik::edit::RotationAxis::kX);
+  const std::vector<double> turned = rotation.targetsTurnedBy(90.0);
+  EXPECT_NEAR(turned[0], 0.0, 1e-12);
+  EXPECT_NEAR(turned[1], 0.0, 1e-12);
+  EXPECT_NEAR(turned[2], 1.0, 1e-12) << "y turns into z about x";
+  // Seen from +z, an X axis is edge-on: the dial's sign stays; a Z axis pointing away flips it.
+  rotation.setAxis(meshik::edit::RotationAxis::kZ);
+  EXPECT_EQ(rotation.axisVector()[2], 1.0);
+}
+
+TEST(RigidFit, FindsARotationAndTranslationAndRefusesANonRigidMove) {
+  const std::vector<double> from = {0, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0, 3};
+  const ScreenProjection view = cameraOnZAxis();
+  meshik::edit::GroupRotation rotation(view, from, {0, 1, 2, 3}, 0, 0);
+  rotation.setAxis(meshik::edit::RotationAxis::kY);
+  std::vector<double> to = rotation.targetsTurnedBy(33.0);
+  for (size_t i = 0; i < to.size(); i += 3) to[i] += 0.5;
+  const auto motion = meshik::edit::fitRigidMotion(from.data(), to.data(), 4, 1e-12);
+  ASSERT_TRUE(motion.has_value());
+  for (size_t p = 0; p < 4; ++p) {
+    const double* a = &from[3 * p];
+    for (int row = 0; row < 3; ++row) {
+      double x = motion->center[row] + motion->translation[row];
+      for (int k = 0; k < 3; ++k) x += motion->rotation[3 * row + k] * (a[k] - motion->center[k]);
+      EXPECT_NEAR(x, to[3 * p + row], 1e-12);
+    }
+  }
+  EXPECT_NEAR(std::acos((motion->rotation[0] + motion->rotation[4] + motion->rotation[8] - 1) / 2) * 180 / M_PI, 33.0,
+              1e-9);
+  to[4] += 1e-3;
+  EXPECT_FALSE(meshik::edit::fitRigidMotion(from.data(), to.data(), 4, 1e-6).has_value());
+}
+
+// A turned group of the tube goes into the file as "rotate" + "translate"; resolved by the
+// library it gives back the tool's targets.
+TEST(ConstraintFramesWriter, ATurnedGroupIsWrittenAsARotationThatResolvesToItsTargets) {
+  const meshik_test::ExampleMeshes meshes = meshik_test::make_tube_examples();
+  const int n = meshes.num_vertices();
+  const std::vector<int> handles = {0, 1, 2, n - 1};
+  const std::vector<int> groups = {1, 1, 1, 2};
+  std::vector<double> targets;
+  for (int v : handles) targets.insert(targets.end(), &meshes.rest[3 * v], &meshes.rest[3 * v] + 3);
+  meshik::edit::GroupRotation rotation(cameraOnZAxis(), targets, meshik::edit::groupMembers(groups, 1), 0, 0);
+  rotation.setAxis(meshik::edit::RotationAxis::kZ);
+  targets = rotation.targetsTurnedBy(-20.0);
+  targets[9 + 1] += 0.25;  // the single handle moves (positions)
+
+  meshik::edit::KeyframeList keyframes;
+  std::vector<double> second = targets;
+  for (size_t i = 0; i < 9; i += 3) second[i] += 0.1;
+  EXPECT_EQ(keyframes.add(keyframes.nextName(), handles, groups, targets), "");
+  EXPECT_EQ(keyframes.nextName(), "0002");
+  EXPECT_EQ(keyframes.add(keyframes.nextName(), handles, groups, second), "");
+  EXPECT_NE(keyframes.add("0003", {0, 1}, {1, 1}, {0, 0, 0, 0, 0, 0}).find("handles changed"), std::string::npos);
+  EXPECT_NE(keyframes.add("0001", handles, groups, targets).find("already named"), std::string::npos);
+  EXPECT_EQ(keyframes.count(), 2);
+
+  meshik::edit::DragFrames file;
+  file.rest_path = "/data/rest.obj";
+  file.example_paths = {"/data/a.obj"};
+  keyframes.fill(file);
+  const std::filesystem::path folder = emptyFolder("meshik_edit_keyframes_test");
+  const std::string path = (folder / "frames.json").string();
+  meshik::edit::writeConstraintFrames(path, file, meshes.rest.data(), n);
+  std::ifstream text(path);
+  const std::string json((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"rotate\""), std::string::npos) << json;
+  const auto document = meshik::constraints::read_constraint_file(path);
+  ASSERT_EQ(document.frames.size(), 2u);
+  EXPECT_TRUE(document.frames[0].targets[0].rigid);
+  EXPECT_FALSE(document.frames[0].targets[1].rigid) << "one vertex: positions";
+  const auto resolved = meshik::constraints::resolve_constraints(document, meshes.rest.data(), n);
+  ASSERT_EQ(resolved.handles, std::vector<std::int64_t>(handles.begin(), handles.end()));
+  for (size_t i = 0; i < targets.size(); ++i) {
+    EXPECT_NEAR(resolved.targets[i], targets[i], 1e-12) << i;
+    EXPECT_NEAR(resolved.targets[targets.size() + i], second[i], 1e-12) << i;
+  }
+  std::filesystem::remove_all(folder);
+}
+
+// Four vertices, symmetric about x = 1 but for one that is a little off: the partner is the
+// nearest vertex to the mirror image within the tolerance; one without a partner gets -1.
+TEST(MirrorPairing, PairsEachVertexWithTheNearestToItsImageWithinTheTolerance) {
+  const std::vector<double> rest = {0, 0, 0, 2, 0, 0, 0.5, 1, 0, 1.52, 1, 0, 1, 3, 0, 0.2, 5, 0};
+  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughCentre(rest, 0);
+  EXPECT_DOUBLE_EQ(plane.offset, 1.0);
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 0, plane, 1e-9), 1);
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 1, plane, 1e-9), 0);
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 2, plane, 1e-9), -1) << "0.02 off";
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 2, plane, 0.05), 3);
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 4, plane, 1e-9), 4) << "on the plane: itself";
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 5, plane, 0.1), -1);
+  double image[3];
+  plane.reflect(&rest[6], image);
+  EXPECT_DOUBLE_EQ(image[0], 1.5);
+  EXPECT_DOUBLE_EQ(image[1], 1.0);
+  const meshik::edit::MirrorPlane y_plane = meshik::edit::MirrorPlane::throughCentre(rest, 1);
+  EXPECT_DOUBLE_EQ(y_plane.offset, 2.5);
+}
+
+TEST(PoseState, GroupMembersAndNewNumbers) {
+  EXPECT_EQ(meshik::edit::groupMembers({3, 1, 3, 2}, 3), (std::vector<int>{0, 2}));
+  EXPECT_EQ(meshik::edit::newGroupNumber({3, 1, 3, 2}), 4);
+  EXPECT_EQ(meshik::edit::newGroupNumber({}), 1);
+}
+
+// Undo hands the worker the undone pose's weights: the next solve starts from them, not from
+// the newest pose's.
+TEST(SolveWorker, StartWeightsReplaceTheWarmStart) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {});
+  worker.post(scene.request(0.3));
+  worker.waitIdle();
+  const auto first = worker.take();
+  ASSERT_TRUE(first && first->error.empty());
+  worker.post(scene.request(0.6));
+  worker.waitIdle();
+  ASSERT_TRUE(worker.take().has_value());
+  meshik::edit::SolveRequest again = scene.request(0.45);
+  again.start_weights = first->result.weights;
+  worker.post(again);
+  worker.waitIdle();
+  const auto third = worker.take();
+  ASSERT_TRUE(third && third->error.empty());
+  const meshik::Solver solver(scene.examples, scene.handles);
+  EXPECT_EQ(third->result.vertices, solver.solve(again.targets.data(), first->result.weights.data()).vertices);
 }
 
 TEST(LatencyStats, MedianAndMax) {

@@ -70,6 +70,19 @@ struct Frame {
   std::vector<GroupTarget> targets;
 };
 
+// "regions": spatially varying blend weights. A count of regions clustered from the examples
+// (count >= 1), "auto" (automatic), or vertex groups by name (each a list of rest vertex indices;
+// vertices in no group form one more region).
+struct RegionGroup {
+  std::string name;
+  std::vector<std::int64_t> vertices;
+};
+struct RegionSetting {
+  std::int64_t count = 1;
+  bool automatic = false;
+  std::vector<RegionGroup> groups;  // in the file's order; non-empty for vertex groups
+};
+
 // A checked constraint file. Mesh file names are as written in the file (see locate_mesh_files);
 // options left out of the file are empty.
 struct ConstraintDocument {
@@ -80,6 +93,9 @@ struct ConstraintDocument {
   std::vector<HandleGroup> handles;        // in the file's order
   std::vector<Frame> frames;
   std::optional<std::string> feature_space;  // "nonlinear" or "linear"
+  std::optional<std::string> blend;          // "affine" or "free"
+  std::optional<RegionSetting> regions;
+  std::optional<double> region_smoothness;
   std::optional<double> weight_regularization;
   std::optional<std::int64_t> max_iterations;
   std::optional<double> tolerance;
@@ -140,6 +156,9 @@ struct GroupPositions {
 // then use the format's defaults).
 struct WrittenSettings {
   std::optional<std::string> feature_space;       // "nonlinear" or "linear"
+  std::optional<std::string> blend;               // "affine" or "free"
+  std::optional<std::int64_t> regions;            // a region count >= 1, or -1 for "auto"
+  std::optional<double> region_smoothness;        // >= 0
   std::optional<double> weight_regularization;    // k >= 0
   std::optional<std::int64_t> max_iterations;     // >= 1
 };
@@ -153,5 +172,15 @@ struct WrittenSettings {
 void write_constraint_file(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
                            const std::vector<GroupPositions>& groups, const std::string& frame_name = "0001",
                            const WrittenSettings& settings = {});
+
+// Writes a constraint file with any number of frames: "rest" and "examples" as given, the members
+// of `settings` that are set, the handle groups (vertex lists, in order) and the frames in order.
+// A frame's target is written as its position list, or for a rigid one as
+// {"rotate": {"axis", "degrees", "center"}, "translate"} ("rotate" left out for the identity,
+// "center" for an unset centre). Checked and written like write_constraint_file; ConstraintError
+// names `path` and the group or frame at fault.
+void write_constraint_frames(const std::string& path, const std::string& rest, const std::vector<std::string>& examples,
+                             const std::vector<HandleGroup>& groups, const std::vector<Frame>& frames,
+                             const WrittenSettings& settings = {});
 
 }  // namespace meshik::constraints

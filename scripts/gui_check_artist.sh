@@ -1,0 +1,179 @@
+# Sourced by scripts/gui_check.sh (uses its start_meshlab, wait_log, shot, step, fail, ...): drives
+# what artists reach for in "MeshIK: Drag to Pose" on the sample, with one screenshot per feature
+# (<name>_group, _undo, _rotate, _keyframes, _mirror), and checks:
+#   undo returns the exact earlier pose (bit for bit) and redo the exact later one;
+#   a turned group (R, typed 30 degrees, Return) is saved as a "rotate" target that reproduces the
+#   tool's pose in meshik.Solver (within 1e-6 of the diagonal);
+#   two keyframes (F) posed by `meshik pose` equal the tool's poses frame by frame;
+#   Esc during a drag puts the pose back exactly (and leaves the tool running);
+#   with Mirror Z (key M three times), a dragged handle and its partner give a pose symmetric about
+#   the plane z = centre within 1e-6 of the diagonal (the sample's examples are symmetric).
+
+# Saves the posed layer through the tool's dialog (key P) to $1; prints the logged weights.
+artist_save_pose() {
+  xdotool mousemove 300 120 key p
+  wait_window "Save pose" 10 >/dev/null || { shot "${artist}_no_pose_dialog"; fail "$artist: no \"Save pose\" dialog"; }
+  sleep 0.5
+  xdotool key ctrl+a
+  xdotool type --delay 5 "$1"
+  xdotool key Return
+  local line
+  line=$(wait_log "MeshIK drag: saved the pose to $1 " 30) || fail "$artist: the pose was not saved to $1"
+  sed -E 's/.*\(weights \[(.*)\]\).*/\1/' <<<"$line"
+}
+
+# Saves the constraint file through the tool's dialog (key S) to $1.
+artist_save_constraints() {
+  xdotool mousemove 300 120 key s
+  wait_window "Save constraint file" 10 >/dev/null || fail "$artist: no \"Save constraint file\" dialog"
+  sleep 0.5
+  xdotool key ctrl+a
+  xdotool type --delay 5 "$1"
+  xdotool key Return
+  wait_log "MeshIK drag: saved [0-9]+ handles in [0-9]+ groups, [0-9]+ frames to $1" 10 >/dev/null ||
+    fail "$artist: the constraint file $1 was not saved (see $meshlab_log)"
+}
+
+# Presses the keys $2... with the mouse at $artist_cursor (default: an empty spot of the 3D view)
+# and waits for a log line matching $1 (prints it).
+artist_keys() {
+  local pattern=$1
+  shift
+  xdotool mousemove ${artist_cursor:-560 520}
+  sleep 0.2
+  xdotool key "$@"
+  wait_log "$pattern" 20 || { shot "${artist}_no_$(date +%s)"; fail "$artist: keys $* gave no log line \"$pattern\" (see $meshlab_log)"; }
+}
+
+# Drags from screen point $1 $2 in $3 moves of $4 $5 pixels each; $6: "release" or "escape" (Esc before
+# the button goes up).
+artist_drag() {
+  local i
+  xdotool mousemove "$1" "$2"
+  sleep 0.3
+  xdotool mousedown 1
+  sleep 0.3
+  for i in $(seq "$3"); do
+    xdotool mousemove_relative -- "$4" "$5"
+    sleep 0.05
+  done
+  sleep 0.3
+  if [[ $6 == escape ]]; then xdotool key Escape; sleep 0.5; fi
+  xdotool mouseup 1
+}
+
+# Starts MeshLab on the project $1 and the tool; the three mesh points go to artist_points.
+artist_start() {
+  start_meshlab "$1" "$out/meshlab_$artist.log"
+  xdotool mousemove 200 990 click 1
+  sleep 0.3
+  xdotool key alt+e
+  sleep 0.7
+  xdotool key Up Return
+  wait_window "MeshIK: Drag to Pose" 20 >/dev/null || fail "$artist: the tool's dock did not open"
+  wait_log "MeshIK drag: rest layer .* [0-9]+ example layers" 60 >/dev/null || fail "$artist: the tool did not start"
+  sleep 1
+  shot "${artist}_started"
+  artist_points=$("$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" points "$out/${artist}_started.png" 5 1120 70 870) ||
+    fail "$artist: could not find the mesh in the screenshot"
+}
+
+# Clicks screen point $1 $2 (with modifier $3 when given) and waits for handle number $4.
+artist_click() {
+  if [[ -n $3 ]]; then xdotool mousemove "$1" "$2" keydown "$3" click 1 keyup "$3"; else xdotool mousemove "$1" "$2" click 1; fi
+  wait_log "MeshIK drag: $4 handles, the new one vertex" 5
+}
+
+drive_artist_features() {
+  artist=$1
+  local check=("$root/.venv/bin/python" "$root/scripts/gui_check_drag.py") p1 p3 line x y dx weights
+  step "$artist: groups, undo/redo, Esc, rotation, keyframes (the tool in MeshLab)"
+  artist_start "$2"
+  p1=$(sed -n 1p <<<"$artist_points")
+  p3=$(sed -n 3p <<<"$artist_points")
+  artist_save_pose "$out/${artist}_rest.ply" >/dev/null
+  # Group 1: one handle at one end; group 2: two handles at the other end (ctrl+click beside).
+  line=$(artist_click $p1 "" 1) || fail "$artist: clicking $p1 added no handle"
+  read -r x y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
+  line=$(artist_click $p3 "" 2) || fail "$artist: clicking $p3 added no handle"
+  local second
+  second=$(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
+  read -r px py <<<"$p3"
+  for dx in 14 -14 24 -24 34; do
+    artist_click $((px + dx)) "$py" ctrl 3 >/dev/null && break
+  done
+  grep -qE "MeshIK drag: 3 handles, .*\(group 2\)" "$meshlab_log" || fail "$artist: ctrl+click did not add a handle to group 2"
+  shot "${artist}_group"
+
+  # A drag of group 1 (36 pixels: a small one, so that `meshik pose`, which starts each file from
+  # the rest weights, finds the tool's local minimum below), undone and redone: the exact poses.
+  artist_drag "$x" "$y" 12 0 -3 release
+  wait_log "MeshIK drag: drag group 1 " 30 >/dev/null || fail "$artist: the drag was not recorded as an undo step"
+  artist_save_pose "$out/${artist}_drag.ply" >/dev/null
+  artist_keys "MeshIK drag: undo drag group 1" ctrl+z >/dev/null
+  shot "${artist}_undo"
+  artist_save_pose "$out/${artist}_undo.ply" >/dev/null
+  "${check[@]}" same "$out/${artist}_undo.ply" "$out/${artist}_rest.ply" || fail "$artist: undo did not restore the exact pose"
+  artist_keys "MeshIK drag: redo drag group 1" ctrl+shift+z >/dev/null
+  artist_save_pose "$out/${artist}_redo.ply" >/dev/null
+  "${check[@]}" same "$out/${artist}_redo.ply" "$out/${artist}_drag.ply" || fail "$artist: redo did not restore the exact pose"
+
+  # Esc in the middle of a drag: back to the pose before it, the tool still running.
+  artist_drag "$x" "$((y - 36))" 10 6 0 escape
+  wait_log "MeshIK drag: drag cancelled" 20 >/dev/null || fail "$artist: Esc did not cancel the drag"
+  artist_save_pose "$out/${artist}_escape.ply" >/dev/null
+  "${check[@]}" same "$out/${artist}_escape.ply" "$out/${artist}_drag.ply" || fail "$artist: Esc did not restore the pose"
+
+  # Turn group 2 (R over its handle) by 30 degrees about the view axis (typed), saved as a "rotate" target.
+  artist_cursor=$second
+  artist_keys "MeshIK drag: turning group 2" r >/dev/null
+  artist_cursor=
+  xdotool key 3 0
+  sleep 0.5
+  artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
+  sleep 0.5
+  shot "${artist}_rotate"
+  weights=$(artist_save_pose "$out/${artist}_rotate.ply")
+  artist_save_constraints "$out/${artist}_rotate.json"
+  grep -q '"rotate"' "$out/${artist}_rotate.json" || fail "$artist: the turned group is not saved as a rotate target"
+  "${check[@]}" check "$out/${artist}_rotate.json" "$out/${artist}_rotate.ply" "$weights" >"$out/${artist}_rotate_check.txt" 2>&1 ||
+    { cat "$out/${artist}_rotate_check.txt" >&2; fail "$artist: the rotate target does not reproduce the tool's pose"; }
+  step "$artist: rotate: $(tail -n 1 "$out/${artist}_rotate_check.txt")"
+
+  # Two keyframes: the turned pose, then 25 degrees more about Z; `meshik pose` replays them.
+  artist_keys "MeshIK drag: frame 0001 added" f >/dev/null
+  artist_keys "MeshIK drag: turning group 2" r >/dev/null  # the last group turned
+  xdotool key z 2 5
+  sleep 0.5
+  artist_keys "MeshIK drag: turn group 2 about Z" Return >/dev/null
+  artist_keys "MeshIK drag: frame 0002 added" f >/dev/null
+  sleep 0.5
+  shot "${artist}_keyframes"
+  artist_save_pose "$out/${artist}_frame2.ply" >/dev/null
+  artist_save_constraints "$out/${artist}_keyframes.json"
+  "${check[@]}" frames "$out/${artist}_keyframes.json" "$out/${artist}_replay" "$out/${artist}_rotate.ply" \
+    "$out/${artist}_frame2.ply" >"$out/${artist}_frames_check.txt" 2>&1 ||
+    { cat "$out/${artist}_frames_check.txt" >&2; fail "$artist: meshik pose does not replay the keyframes"; }
+  step "$artist: keyframes: $(tail -n 1 "$out/${artist}_frames_check.txt")"
+  ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
+  stop_meshlab
+
+  # Mirror Z: one handle, its partner found across the plane z = centre, one drag.
+  artist="${1}_mirror"
+  artist_start "$2"
+  artist_keys "MeshIK drag: mirror: Z" m m m >/dev/null
+  line=$(artist_click $(sed -n 3p <<<"$artist_points") "" 1) || fail "$artist: clicking added no handle"
+  wait_log "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the Z plane" 5 >/dev/null ||
+    fail "$artist: no mirror partner (see $meshlab_log)"
+  read -r x y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
+  artist_drag "$x" "$y" 12 -6 -6 release
+  wait_log "MeshIK drag: drag group 1 " 30 >/dev/null || fail "$artist: the drag was not recorded"
+  sleep 0.5
+  shot "$artist"
+  artist_save_pose "$out/${artist}.ply" >/dev/null
+  "${check[@]}" symmetric "$out/${artist}.ply" 2 >"$out/${artist}_check.txt" 2>&1 ||
+    { cat "$out/${artist}_check.txt" >&2; fail "$artist: the mirrored pose is not symmetric"; }
+  step "$artist: $(tail -n 1 "$out/${artist}_check.txt")"
+  ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
+  stop_meshlab
+}
