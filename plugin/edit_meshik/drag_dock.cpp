@@ -1,5 +1,7 @@
 #include "drag_dock.h"
 
+#include "meshik/meshik.h"
+
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -8,6 +10,7 @@
 #include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSpinBox>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -92,6 +95,23 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   regularization_->setDecimals(4);
   regularization_->setSingleStep(0.01);
   form->addRow(tr("Weight regularization"), regularization_);
+  blend_ = new QComboBox(this);
+  blend_->addItems({tr("Affine"), tr("Free")});
+  blend_->setToolTip(tr("Stretch blend: affine I + sum w (S - I), or the paper's free sum w S"));
+  form->addRow(tr("Stretch blend"), blend_);
+  regions_ = new QSpinBox(this);
+  regions_->setRange(0, 8);
+  regions_->setValue(1);
+  regions_->setSpecialValueText(tr("Automatic"));
+  regions_->setToolTip(tr("Regions of the surface with their own example weights (1: one set of weights)"));
+  form->addRow(tr("Regions"), regions_);
+  region_smoothness_ = new QDoubleSpinBox(this);
+  region_smoothness_->setRange(0.0, 1000.0);
+  region_smoothness_->setDecimals(4);
+  region_smoothness_->setSingleStep(0.01);
+  region_smoothness_->setValue(0.01);
+  region_smoothness_->setToolTip(tr("How strongly neighbouring regions' weights are pulled together"));
+  form->addRow(tr("Region smoothness"), region_smoothness_);
   mirror_ = new QComboBox(this);
   mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)")});
   mirror_->setToolTip(tr("New handles get a partner at the vertex nearest their mirror image (within 1% of the "
@@ -100,6 +120,9 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   layout->addLayout(form);
   connect(feature_space_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
   connect(regularization_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
+  connect(blend_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
+  connect(regions_, &QSpinBox::editingFinished, this, &DragDock::optionsChanged);
+  connect(region_smoothness_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
 
   handles_ = fixedLabel(this, 1);
   keyframes_ = fixedLabel(this, 1);
@@ -157,6 +180,12 @@ QString DragDock::cycleMirror() {
 
 double DragDock::weightRegularization() const { return regularization_->value(); }
 
+bool DragDock::freeBlend() const { return blend_->currentIndex() == 1; }
+
+int DragDock::regionCount() const { return regions_->value() == 0 ? kAutomaticRegions : regions_->value(); }
+
+double DragDock::regionSmoothness() const { return region_smoothness_->value(); }
+
 void DragDock::showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles) {
   QStringList past;
   for (size_t i = 0; i < weight_bars_.size(); ++i) {
@@ -164,7 +193,9 @@ void DragDock::showPose(const std::vector<double>& weights, int iterations, doub
     bar->setVisible(i < weights.size());
     if (i >= weights.size()) continue;
     const double w = weights[i];
-    const QString name = i < weight_names_.size() ? weight_names_[i] : QString::number(i + 1);
+    const size_t examples = weight_names_.size();
+    QString name = examples ? weight_names_[i % examples] : QString::number(i + 1);
+    if (examples && weights.size() > examples) name += tr(" (region %1)").arg(i / examples + 1);
     bar->setValue(static_cast<int>(std::lround(1000.0 * std::clamp(std::abs(w), 0.0, 1.0))));
     bar->setFormat(name + QString::asprintf("  %+.3f", w));
     const bool beyond = w < -kExtrapolation || w > 1.0 + kExtrapolation;

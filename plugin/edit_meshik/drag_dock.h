@@ -12,6 +12,7 @@
 
 class QComboBox;
 class QDoubleSpinBox;
+class QSpinBox;
 class QLabel;
 class QListWidget;
 class QProgressBar;
@@ -36,6 +37,11 @@ class DragDock : public QWidget {
   // Steps the "Mirror" option to the next choice (off, X, Y, Z, off, ...); returns its text.
   QString cycleMirror();
   double weightRegularization() const;
+  // The "Stretch blend" option: true for the paper's free weights, false for the affine space.
+  bool freeBlend() const;
+  // The "Regions" option: a count >= 1 (1: one weight vector), or meshik::kAutomaticRegions.
+  int regionCount() const;
+  double regionSmoothness() const;
 
   // The readout of a finished pose: #E weights, Gauss-Newton iterations, solve time, inverted faces.
   void showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles);
@@ -61,6 +67,9 @@ class DragDock : public QWidget {
   QComboBox* feature_space_;
   QComboBox* mirror_;
   QDoubleSpinBox* regularization_;
+  QComboBox* blend_;
+  QSpinBox* regions_;
+  QDoubleSpinBox* region_smoothness_;
   std::vector<QProgressBar*> weight_bars_;  // a fixed number, hidden when unused
   std::vector<QString> weight_names_;
   QLabel* extrapolation_;

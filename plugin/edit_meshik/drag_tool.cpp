@@ -199,6 +199,9 @@ void DragTool::restartWorker() {
   SolverOptions options;
   options.feature_space = panel_->linearFeatureSpace() ? FeatureSpace::kLinear : FeatureSpace::kNonlinear;
   options.weight_regularization = panel_->weightRegularization();
+  options.blend = panel_->freeBlend() ? Blend::kFree : Blend::kAffine;
+  options.regions = panel_->regionCount();
+  options.region_smoothness = panel_->regionSmoothness();
   worker_ = std::make_unique<SolveWorker>(example_set_, options, [this] {
     QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection);
   });

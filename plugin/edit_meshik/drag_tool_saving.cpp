@@ -41,6 +41,9 @@ void DragTool::saveConstraintFile() {
   for (int id : example_ids_) file.example_paths.push_back(layerFile(document_->getMesh(static_cast<unsigned>(id))));
   file.linear_feature_space = panel_ && panel_->linearFeatureSpace();
   file.weight_regularization = panel_ ? panel_->weightRegularization() : 0.0;
+  file.free_blend = panel_ && panel_->freeBlend();
+  file.regions = panel_ ? panel_->regionCount() : 1;
+  file.region_smoothness = panel_ ? panel_->regionSmoothness() : 0.01;
   if (keyframes_.count() > 0) keyframes_.fill(file);
   else fillOneFrame(file, "drag", handles_, groups_, targets_);
   try {

@@ -4,6 +4,7 @@
 #include "constraint_frames_writer.h"
 
 #include "meshik/constraints/constraint_file.h"
+#include "meshik/meshik.h"
 #include "bounding_box.h"
 #include "rigid_fit.h"
 
@@ -72,6 +73,11 @@ void writeConstraintFrames(const std::string& path, const DragFrames& frames, co
   constraints::WrittenSettings settings;
   settings.feature_space = frames.linear_feature_space ? "linear" : "nonlinear";
   settings.weight_regularization = frames.weight_regularization;
+  settings.blend = frames.free_blend ? "free" : "affine";
+  if (frames.regions != 1) {
+    settings.regions = frames.regions == kAutomaticRegions ? -1 : frames.regions;
+    settings.region_smoothness = frames.region_smoothness;
+  }
   settings.max_iterations = frames.max_iterations;
   try {
     constraints::write_constraint_frames(path, frames.rest_path, frames.example_paths, groups, written, settings);

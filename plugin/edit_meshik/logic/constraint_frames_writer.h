@@ -33,6 +33,9 @@ struct DragFrames {
   std::vector<std::string> example_paths;  // #E example files (absolute)
   bool linear_feature_space = false;       // "feature_space": "linear" (else "nonlinear")
   double weight_regularization = 0.0;
+  bool free_blend = false;                 // "blend": "free" (else "affine")
+  int regions = 1;                         // "regions": a count >= 1, or meshik::kAutomaticRegions ("auto")
+  double region_smoothness = 0.01;         // "region_smoothness", written with more than one region
   int max_iterations = 30;
   std::vector<DragGroup> groups;
   std::vector<DragKeyframe> frames;

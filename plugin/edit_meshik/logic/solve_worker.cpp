@@ -94,7 +94,9 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
     if (request.start_weights) warm_weights_ = *request.start_weights;
     const Solver& solver = solverFor(request, outcome);
     const Clock::time_point start = Clock::now();
-    outcome.result = solver.solve(request.targets.data(), warm_weights_.empty() ? nullptr : warm_weights_.data());
+    // Weights of another length (kept from before the blend's regions changed) are no warm start.
+    const bool warm = warm_weights_.size() == static_cast<size_t>(solver.num_weights());
+    outcome.result = solver.solve(request.targets.data(), warm ? warm_weights_.data() : nullptr);
     outcome.solve_ms = millisecondsSince(start);
     for (size_t i = 0; i < outcome.result.vertices.size(); ++i)
       if (!std::isfinite(outcome.result.vertices[i]))

@@ -476,6 +476,57 @@ TEST(SolveWorker, StartWeightsReplaceTheWarmStart) {
   EXPECT_EQ(third->result.vertices, solver.solve(again.targets.data(), first->result.weights.data()).vertices);
 }
 
+// The dock's "Regions" option grows the weights to #regions x #examples: weights kept from
+// before (one vector of #E) are no warm start for the new solver, which starts afresh instead
+// (reading them would run past their end).
+TEST(SolveWorker, WeightsOfAnotherLengthAreNoWarmStart) {
+  TubeScene scene;
+  meshik::SolverOptions options;
+  options.regions = 2;
+  options.blend = meshik::Blend::kFree;
+  meshik::edit::SolveWorker worker(scene.examples, options, {});
+  meshik::edit::SolveRequest request = scene.request(0.4);
+  request.start_weights = std::vector<double>(scene.meshes.examples.size(), 0.5);
+  worker.post(request);
+  worker.waitIdle();
+  const auto outcome = worker.take();
+  ASSERT_TRUE(outcome && outcome->error.empty()) << (outcome ? outcome->error : "none");
+  const meshik::Solver solver(scene.examples, scene.handles, options);
+  ASSERT_EQ(solver.num_weights(), 2 * static_cast<int>(scene.meshes.examples.size()));
+  EXPECT_EQ(outcome->result.weights.size(), static_cast<size_t>(solver.num_weights()));
+  EXPECT_EQ(outcome->result.vertices, solver.solve(request.targets.data(), nullptr).vertices);
+}
+
+// The dock's blend and regions are saved, so `meshik pose` replays the tool's poses with them.
+TEST(ConstraintFramesWriter, WritesTheBlendAndTheRegions) {
+  const std::filesystem::path folder = emptyFolder("meshik_edit_writer_blend_test");
+  const std::string path = (folder / "drag.json").string();
+  meshik::edit::DragFrames file = someFrames();
+  file.free_blend = true;
+  file.regions = meshik::kAutomaticRegions;
+  file.region_smoothness = 0.5;
+  meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
+  meshik::constraints::ConstraintDocument document = meshik::constraints::read_constraint_file(path);
+  EXPECT_EQ(document.blend, std::optional<std::string>("free"));
+  ASSERT_TRUE(document.regions.has_value());
+  EXPECT_TRUE(document.regions->automatic);
+  EXPECT_EQ(document.region_smoothness, std::optional<double>(0.5));
+
+  file = someFrames();
+  file.regions = 3;
+  meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
+  document = meshik::constraints::read_constraint_file(path);
+  EXPECT_EQ(document.blend, std::optional<std::string>("affine"));
+  ASSERT_TRUE(document.regions.has_value());
+  EXPECT_EQ(document.regions->count, 3);
+  EXPECT_FALSE(document.regions->automatic);
+
+  file = someFrames();  // one region: the file keeps the global weights' form
+  meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
+  EXPECT_FALSE(meshik::constraints::read_constraint_file(path).regions.has_value());
+  std::filesystem::remove_all(folder);
+}
+
 TEST(LatencyStats, MedianAndMax) {
   meshik::edit::LatencyStats stats;
   EXPECT_EQ(stats.median(), 0.0);
