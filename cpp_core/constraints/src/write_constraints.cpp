@@ -2,10 +2,10 @@
 // their targets, checked by the reader before they replace the file.
 #include "meshik/constraints/constraint_file.h"
 
-#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -34,15 +34,44 @@ OrderedJson point_list(const std::string& where, const double* points, std::size
   return list;
 }
 
+// The axis (unit) and angle in [0, pi] of a rotation matrix (row-major 3 by 3): the angle from
+// atan2 of its skew and symmetric parts (accurate near 0 and near pi), the axis from the skew part,
+// or past a right angle from the symmetric part's largest column, signed by the skew part.
+// Plain arithmetic, no aligned temporaries (sanitized builds run it on a fake stack).
+double axis_angle(const std::array<double, 9>& r, Vec3& axis) {
+  const Vec3 skew{r[7] - r[5], r[2] - r[6], r[3] - r[1]};  // 2 sin(angle) axis
+  const double twice_sin = std::sqrt(skew[0] * skew[0] + skew[1] * skew[1] + skew[2] * skew[2]);
+  const double twice_cos = r[0] + r[4] + r[8] - 1.0;
+  const double angle = std::atan2(twice_sin, twice_cos);
+  if (angle == 0.0) return 0.0;
+  if (twice_cos >= 0.0) {
+    for (int k = 0; k < 3; ++k) axis[k] = skew[k] / twice_sin;
+    return angle;
+  }
+  // (R + R^T) / 2 = cos I + (1 - cos) a a^T: the column of a a^T with the largest diagonal.
+  const double c = twice_cos / 2.0;
+  int j = 0;
+  for (int k = 1; k < 3; ++k)
+    if (r[4 * k] > r[4 * j]) j = k;
+  double norm = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    axis[k] = (r[3 * k + j] + r[3 * j + k]) / 2.0 - (k == j ? c : 0.0);
+    norm += axis[k] * axis[k];
+  }
+  norm = std::sqrt(norm);
+  const double sign = axis[0] * skew[0] + axis[1] * skew[1] + axis[2] * skew[2] < 0.0 ? -1.0 : 1.0;
+  for (int k = 0; k < 3; ++k) axis[k] *= sign / norm;
+  return angle;
+}
+
 // A rigid target as {"rotate": {"axis", "degrees", "center"}, "translate"}.
 OrderedJson rigid_target(const std::string& where, const GroupTarget& target) {
-  const Eigen::Matrix3d rotation = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(target.rotation.data());
-  const Eigen::AngleAxisd turn(rotation);
+  Vec3 axis{0.0, 0.0, 0.0};
+  const double angle = axis_angle(target.rotation, axis);
   OrderedJson json = OrderedJson::object();
-  if (turn.angle() != 0.0) {
-    const Vec3 axis{turn.axis().x(), turn.axis().y(), turn.axis().z()};
+  if (angle != 0.0) {
     OrderedJson rotate = {{"axis", point_list(where + "rotate.axis: ", axis.data(), 1, nullptr)[0]},
-                          {"degrees", turn.angle() * 180.0 / M_PI}};
+                          {"degrees", angle * 180.0 / M_PI}};
     if (target.center) rotate["center"] = point_list(where + "rotate.center: ", target.center->data(), 1, nullptr)[0];
     json["rotate"] = std::move(rotate);
   }
