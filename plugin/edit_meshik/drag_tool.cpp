@@ -148,6 +148,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
     return true;  // the dock shows the error; nothing else happens until the user fixes the layers
   }
   rebuildExamples();
+  area->setFocus();  // the tool's keys (P, S, R, Ctrl+Z...) work at once, before any click on the view
   area->update();
   return true;
 }
