@@ -1,6 +1,7 @@
 #include "layer_arrays.h"
 
 #include <common/mlexception.h>
+#include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/allocate.h>
 
 #include <algorithm>
@@ -48,6 +49,24 @@ void setVertexPositions(MeshModel& layer, const std::vector<double>& positions) 
         Point3m(static_cast<Scalarm>(positions[3 * i]), static_cast<Scalarm>(positions[3 * i + 1]),
                 static_cast<Scalarm>(positions[3 * i + 2]));
   layer.updateBoxAndNormals();
+}
+
+std::vector<double> setVertexPositionsAndNormals(MeshModel& layer, const std::vector<double>& positions,
+                                                 const std::vector<double>& face_normals,
+                                                 const std::vector<double>& vertex_normals) {
+  std::vector<double> held(positions.size());
+  for (size_t i = 0; i < layer.cm.vert.size(); ++i) {
+    CVertexO& v = layer.cm.vert[i];
+    for (int k = 0; k < 3; ++k) {
+      v.P()[k] = static_cast<Scalarm>(positions[3 * i + k]);
+      v.N()[k] = static_cast<Scalarm>(vertex_normals[3 * i + k]);
+      held[3 * i + k] = static_cast<double>(v.cP()[k]);
+    }
+  }
+  for (size_t f = 0; f < layer.cm.face.size(); ++f)
+    for (int k = 0; k < 3; ++k) layer.cm.face[f].N()[k] = static_cast<Scalarm>(face_normals[3 * f + k]);
+  vcg::tri::UpdateBounding<CMeshO>::Box(layer.cm);
+  return held;
 }
 
 namespace {

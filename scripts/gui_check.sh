@@ -111,7 +111,7 @@ export DISPLAY=:$display_number
 pids=()
 cleanup() { local pid; for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done; }
 trap cleanup EXIT
-Xvfb "$DISPLAY" -screen 0 1600x1000x24 -nolisten tcp -noreset >"$out/xvfb.log" 2>&1 &
+Xvfb "$DISPLAY" -screen 0 1600x1400x24 -nolisten tcp -noreset >"$out/xvfb.log" 2>&1 &
 xvfb_pid=$!
 pids+=("$xvfb_pid")
 for _ in $(seq 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.1; done
@@ -196,9 +196,16 @@ open_meshik_filter() {
   xdotool key Return
 }
 
-# The filter dialog's buttons sit at fixed offsets from its lower corners.
+# The filter dialog's buttons sit at fixed offsets from its lower corners. The pose filter's dialog
+# is taller than the main window (centred on it, its buttons fell below the screen): it is moved
+# to the top of the screen, which is taller than the main window for it.
 click_dialog_button() {  # $1 dialog window, $2 Default|Close|Apply
   eval "$(xdotool getwindowgeometry --shell "$1")"
+  if ((Y < 0 || Y + HEIGHT > 1400)); then
+    xdotool windowmove "$1" "$X" 0
+    sleep 0.5
+    eval "$(xdotool getwindowgeometry --shell "$1")"
+  fi
   case $2 in
     Default) xdotool mousemove $((X + 115)) $((Y + HEIGHT - 54)) click 1 ;;
     Close) xdotool mousemove $((X + 115)) $((Y + HEIGHT - 23)) click 1 ;;

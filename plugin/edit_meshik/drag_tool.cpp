@@ -148,6 +148,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
     return true;  // the dock shows the error; nothing else happens until the user fixes the layers
   }
   rebuildExamples();
+  area->setFocus();  // the tool's keys (P, S, R, Ctrl+Z...) work at once, before any click on the view
   area->update();
   return true;
 }
@@ -161,8 +162,8 @@ void DragTool::rebuildExamples() {
     QStringList ids;
     for (int id : panel_->checkedExampleLayers()) ids << QString::number(id);
     if (ids.isEmpty()) throw MLException("no example layer: open the example poses as layers beside the rest mesh");
-    const std::vector<int> triangles = plugin::triangleIndices(*rest);
-    const std::vector<MeshModel*> examples = plugin::exampleLayers(*document_, *rest, triangles, ids.join(","), nullptr);
+    triangles_ = plugin::triangleIndices(*rest);
+    const std::vector<MeshModel*> examples = plugin::exampleLayers(*document_, *rest, triangles_, ids.join(","), nullptr);
     std::vector<std::vector<double>> positions;
     std::vector<const double*> pointers;
     std::vector<QString> names;
@@ -173,8 +174,8 @@ void DragTool::rebuildExamples() {
       names.push_back(example->label());
     }
     for (const auto& p : positions) pointers.push_back(p.data());
-    const MeshView view{rest_positions_.data(), static_cast<int>(rest_positions_.size() / 3), triangles.data(),
-                        static_cast<int>(triangles.size() / 3)};
+    const MeshView view{rest_positions_.data(), static_cast<int>(rest_positions_.size() / 3), triangles_.data(),
+                        static_cast<int>(triangles_.size() / 3)};
     try {
       example_set_ = std::make_shared<const ExampleSet>(view, pointers);
     } catch (const InputError& error) {
@@ -202,9 +203,9 @@ void DragTool::restartWorker() {
   options.blend = panel_->freeBlend() ? Blend::kFree : Blend::kAffine;
   options.regions = panel_->regionCount();
   options.region_smoothness = panel_->regionSmoothness();
-  worker_ = std::make_unique<SolveWorker>(example_set_, options, [this] {
-    QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection);
-  });
+  worker_ = std::make_unique<SolveWorker>(
+      example_set_, options, [this] { QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection); },
+      triangles_);
   if (!handles_.empty() && last_written_ != rest_positions_) {
     next_start_weights_ = last_weights_;
     postSolve(false, Clock::now());  // the pose so far, solved again (to convergence) with the options
@@ -289,11 +290,9 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
   }
   if (outcome.result.vertices.size() != 3 * rest->cm.vert.size()) return;  // the layer changed under us
   const Clock::time_point applying = Clock::now();
-  plugin::setVertexPositions(*rest, outcome.result.vertices);  // positions, normals, bounding box
-  last_written_ = plugin::vertexPositions(*rest);
+  writePose(*rest, outcome.result.vertices, outcome.normals);
   last_weights_ = outcome.result.weights;
   inverted_ = outcome.result.inverted_triangles;
-  refreshBuffers(*rest);
   const double latency_ms = millisecondsSince(outcome.request.first_event);
   const double waiting_ms = std::chrono::duration<double, std::milli>(applying - outcome.finished).count();
   const double buffers_ms = millisecondsSince(applying);
@@ -321,6 +320,16 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
           .arg(waiting_ms, 0, 'f', 1)
           .arg(buffers_ms, 0, 'f', 1)
           .arg(converged_solve_ ? "converged solve" : "solve"));
+}
+
+void DragTool::writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals) {
+  if (normals.vertices.size() != positions.size() || normals.faces.size() != 3 * rest.cm.face.size()) {
+    // Not from the worker (undo, redo, reset): computed here, off the path of a drag.
+    writePose(rest, positions, surfaceNormals(positions, plugin::triangleIndices(rest)));
+    return;
+  }
+  last_written_ = plugin::setVertexPositionsAndNormals(rest, positions, normals.faces, normals.vertices);
+  refreshBuffers(rest);
 }
 
 void DragTool::refreshBuffers(MeshModel& layer) {

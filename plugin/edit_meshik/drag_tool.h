@@ -108,6 +108,9 @@ class DragTool : public QObject, public EditTool {
   // Solves the current targets to convergence and waits for the pose (the end of a drag or turn).
   void convergeNow();
   void refreshBuffers(MeshModel& layer);
+  // Writes #V by 3 `positions` and their `normals` (the worker's; computed here when empty)
+  // into the rest layer, keeps them as last_written_ and updates the GL buffers.
+  void writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals);
   std::pair<double, double> glPosition(const QMouseEvent* event) const;
   std::pair<double, double> cursorGlPosition() const;
 
@@ -154,6 +157,7 @@ class DragTool : public QObject, public EditTool {
   GLArea* area_ = nullptr;
   MLSceneGLSharedDataContext* shared_ = nullptr;
   std::vector<int> example_ids_;
+  std::vector<int> triangles_;  // #F by 3: the rest layer's, for the pose's normals
   std::shared_ptr<const ExampleSet> example_set_;
   std::unique_ptr<SolveWorker> worker_;
   std::optional<std::vector<double>> next_start_weights_;  // the next solve's warm start (after undo, reset)

@@ -2,7 +2,6 @@
 // drag (reset, clear), and the keyframe list.
 #include "drag_tool.h"
 
-#include "../layer_arrays.h"
 #include "pose_step.h"
 
 #include <meshlab/glarea.h>
@@ -42,9 +41,7 @@ void DragTool::restoreState(const PoseState& state, const QString& what) {
   inverted_.clear();
   next_start_weights_ = state.weights;  // the next solve starts from this pose's weights
   if (!groups_.empty() && groupMembers(groups_, active_group_).empty()) active_group_ = groups_.back();
-  plugin::setVertexPositions(*rest, state.vertices);
-  last_written_ = state.vertices;
-  refreshBuffers(*rest);
+  writePose(*rest, state.vertices, SurfaceNormals{});
   if (panel_) {
     panel_->showError(QString());
     panel_->showPose(last_weights_, 0, 0.0, 0);
@@ -66,9 +63,7 @@ void DragTool::resetPose() {
   const std::shared_ptr<const PoseState> before = captureState();
   for (size_t h = 0; h < handles_.size(); ++h)
     for (int k = 0; k < 3; ++k) targets_[3 * h + k] = rest_positions_[3 * handles_[h] + k];
-  plugin::setVertexPositions(*rest, rest_positions_);
-  last_written_ = rest_positions_;
-  refreshBuffers(*rest);
+  writePose(*rest, rest_positions_, SurfaceNormals{});
   last_weights_.assign(last_weights_.size(), 0.0);
   inverted_.clear();
   if (panel_) panel_->showPose(last_weights_, 0, 0.0, 0);

@@ -63,7 +63,11 @@ void DragTool::savePose() {
   MeshModel* rest = restLayer();
   if (path.isEmpty() || rest == nullptr) return;
   try {
+    const QString rest_file = rest->fullName();
     meshlab::saveMeshWithStandardParameters(path, *rest, &document_->Log);
+    // MeshLab renames the layer after the saved file: the layer stays the rest mesh's (its file is
+    // what the constraint files name as the rest).
+    if (!rest_file.isEmpty()) rest->setFileName(rest_file);
     QStringList weights;  // in full: they are the warm start that reproduces this pose
     for (double w : last_weights_) weights << QString::number(w, 'g', 17);
     log(QStringLiteral("saved the pose to %1 (weights [%2])").arg(path, weights.join(", ")));

@@ -16,8 +16,12 @@ double millisecondsSince(Clock::time_point start) {
 }  // namespace
 
 SolveWorker::SolveWorker(std::shared_ptr<const ExampleSet> examples, SolverOptions options,
-                         std::function<void()> notify)
-    : examples_(std::move(examples)), options_(options), notify_(std::move(notify)), thread_([this] { run(); }) {}
+                         std::function<void()> notify, std::vector<int> triangles)
+    : examples_(std::move(examples)),
+      options_(options),
+      notify_(std::move(notify)),
+      triangles_(std::move(triangles)),
+      thread_([this] { run(); }) {}
 
 SolveWorker::~SolveWorker() {
   {
@@ -102,9 +106,15 @@ SolveOutcome SolveWorker::solve(const SolveRequest& request) {
       if (!std::isfinite(outcome.result.vertices[i]))
         throw std::runtime_error("the solve gave vertex " + std::to_string(i / 3) + " a non-finite position");
     warm_weights_ = outcome.result.weights;
+    if (!triangles_.empty()) {
+      const Clock::time_point normals_start = Clock::now();
+      outcome.normals = surfaceNormals(outcome.result.vertices, triangles_);
+      outcome.normals_ms = millisecondsSince(normals_start);
+    }
   } catch (const std::exception& error) {
     outcome.error = error.what();
     outcome.result = SolveResult{};
+    outcome.normals = SurfaceNormals{};
   }
   outcome.finished = Clock::now();
   return outcome;

@@ -9,8 +9,11 @@
 // a drag) iterates to convergence. Quick and full requests use two solvers (each factors once per
 // handle set), since the iteration limit is a solver option. Finished poses are handed back
 // through take() on the GUI thread, which alone writes the mesh; `notify` (called on the
-// worker's thread) tells it there is one.
+// worker's thread) tells it there is one. Given the triangles, the worker also computes each
+// pose's normals, so that the GUI thread only copies them.
 #pragma once
+
+#include "surface_normals.h"
 
 #include <meshik/meshik.h>
 
@@ -43,10 +46,12 @@ struct SolveRequest {
 struct SolveOutcome {
   SolveRequest request;       // what was solved (moves and first_event include coalesced ones)
   SolveResult result;         // the pose (empty vertices when `error` is set)
+  SurfaceNormals normals;     // the pose's normals (empty without triangles or with `error`)
   std::string error;          // why the solve failed (a handle set the core refuses, ...)
   bool refactored = false;    // a new handle set: the solver was factored for this request
   double factor_ms = 0.0;     // time spent factoring (0 when not refactored)
   double solve_ms = 0.0;      // time spent in Solver::solve
+  double normals_ms = 0.0;    // time spent computing the normals
   Clock::time_point finished;  // when the worker finished it
   std::uint64_t number = 0;   // 1 for the worker's first solve, 2 for the next, ...
 };
@@ -54,8 +59,10 @@ struct SolveOutcome {
 class SolveWorker {
  public:
   // examples: the example set every pose is solved in; options: the solver options;
-  // notify: called on the worker's thread after each finished request (may be empty).
-  SolveWorker(std::shared_ptr<const ExampleSet> examples, SolverOptions options, std::function<void()> notify);
+  // notify: called on the worker's thread after each finished request (may be empty);
+  // triangles: #F by 3 vertex indices of the rest mesh, for the normals (empty: none computed).
+  SolveWorker(std::shared_ptr<const ExampleSet> examples, SolverOptions options, std::function<void()> notify,
+              std::vector<int> triangles = {});
   // Waits for the running solve, drops a waiting request, stops the thread.
   ~SolveWorker();
   SolveWorker(const SolveWorker&) = delete;
@@ -90,6 +97,7 @@ class SolveWorker {
   const std::shared_ptr<const ExampleSet> examples_;
   const SolverOptions options_;
   const std::function<void()> notify_;
+  const std::vector<int> triangles_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -12,6 +12,7 @@
 #include "rigid_fit.h"
 #include "screen_projection.h"
 #include "solve_worker.h"
+#include "surface_normals.h"
 #include "test_meshik_support.h"
 #include "vertex_picking.h"
 #include "view_plane_drag.h"
@@ -216,6 +217,42 @@ TEST(SolveWorker, ANewHandleSetRefactorsAndTheSolveMatchesTheSolverWarmStarted) 
   ASSERT_TRUE(third && third->error.empty());
   EXPECT_TRUE(third->refactored);
   EXPECT_NEAR(third->result.vertices[0], scene.meshes.rest[0], 1e-9) << "the new handle holds";
+}
+
+TEST(SurfaceNormals, UnitFaceNormalsAndAreaWeightedVertexNormals) {
+  // A big triangle in the plane z = 0 (area 2) and a small one (area 0.5) folded up in the plane
+  // x = 0: the normals of the two shared vertices lean towards the big one's in proportion to the areas.
+  const std::vector<double> folded = {0, 0, 0, 0, 2, 0, -2, 0, 0, 0, 0, 0.5};
+  const std::vector<int> triangles = {0, 1, 2, 0, 1, 3};
+  const meshik::edit::SurfaceNormals n = meshik::edit::surfaceNormals(folded, triangles);
+  ASSERT_EQ(n.faces.size(), 6u);
+  ASSERT_EQ(n.vertices.size(), 12u);
+  const double big[3] = {0, 0, 1}, small[3] = {1, 0, 0};  // (p1 - p0) x (p2 - p0) of each, normalized
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(n.faces[k], big[k], 1e-15);
+    EXPECT_NEAR(n.faces[3 + k], small[k], 1e-15);
+  }
+  const double length = std::hypot(4.0, 1.0);  // twice the area of each: 4 along z, 1 along x
+  for (int v : {0, 1}) {
+    EXPECT_NEAR(n.vertices[3 * v], 1.0 / length, 1e-15) << v;
+    EXPECT_NEAR(n.vertices[3 * v + 2], 4.0 / length, 1e-15) << v;
+  }
+  EXPECT_NEAR(n.vertices[3 * 2 + 2], 1.0, 1e-15) << "only in the big triangle";
+  EXPECT_NEAR(n.vertices[3 * 3], 1.0, 1e-15) << "only in the small triangle";
+}
+
+TEST(SolveWorker, GivenTheTrianglesEachPoseComesWithItsNormals) {
+  TubeScene scene;
+  meshik::edit::SolveWorker worker(scene.examples, {}, {}, scene.meshes.triangles);
+  worker.post(scene.request(0.4));
+  worker.waitIdle();
+  const auto outcome = worker.take();
+  ASSERT_TRUE(outcome && outcome->error.empty()) << (outcome ? outcome->error : "none");
+  const meshik::edit::SurfaceNormals expected =
+      meshik::edit::surfaceNormals(outcome->result.vertices, scene.meshes.triangles);
+  EXPECT_EQ(outcome->normals.faces, expected.faces);
+  EXPECT_EQ(outcome->normals.vertices, expected.vertices);
+  EXPECT_EQ(outcome->normals.vertices.size(), outcome->result.vertices.size());
 }
 
 TEST(SolveWorker, QuickRequestsTakeOneStepAndAFullOneConvergesFromThere) {
