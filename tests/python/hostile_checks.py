@@ -70,16 +70,17 @@ def run_meshik(args: Sequence, timeout: float = 120, env: Optional[Dict[str, str
 def run_in_process(args: Sequence, capsys) -> Outcome:
     """meshik.cli.main(args) in this process (faithful where the command cannot kill its own process:
     the mesh readers run in a forked child); left_behind: whether any child process of this one is
-    still alive afterwards. capsys: pytest's fixture, whose captured stderr is taken."""
+    still alive afterwards (children this process had before the call do not count). capsys: pytest's fixture, whose captured stderr is taken."""
     import psutil
 
     from meshik.cli import main
 
     capsys.readouterr()
+    earlier = {child.pid for child in psutil.Process().children(recursive=True)}  # other tests' (a Dask nanny ending)
     start = time.monotonic()
     code = main([str(a) for a in args])
     seconds = time.monotonic() - start
-    children = psutil.Process().children(recursive=True)
+    children = [child for child in psutil.Process().children(recursive=True) if child.pid not in earlier]
     _, still = psutil.wait_procs(children, timeout=1.0)
     return Outcome(code, capsys.readouterr().err, seconds, bool(still), False)
 
