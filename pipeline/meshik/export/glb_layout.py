@@ -25,8 +25,7 @@ def glb_size_problem(frames: int, vertices: int) -> Optional[str]:
     Known before posing: the morph targets alone take frames x vertices x 12 bytes.
     """
     if frames > MAX_GLB_FRAMES:
-        return (f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb holds "
-                "(split the frames over several constraint files, or leave glb out of --format)")
+        return f"{frames} frames is more than the {MAX_GLB_FRAMES} one animated .glb holds"
     estimate = frames * (vertices * 12 + 12) + vertices * 16
     if estimate > _GLB_MAX_BYTES:
         return (f"{frames} frames of {vertices} vertices need about {estimate / 2 ** 30:.1f} GiB of morph targets, "
