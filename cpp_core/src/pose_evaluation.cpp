@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 
 #include "feature_space.h"
+#include "region_outer_products.h"
 #include "simd_clones.h"
 
 namespace meshik {
@@ -255,12 +257,15 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
       jtj_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * num_weights_ * L),
       jts_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * L),
       handle_jts_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_),
-      curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * num_weights_ * L),
+      curvature_size_((regions != nullptr ? regions->num_regions : 1) * set.num_examples * set.num_examples * L),
+      curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * curvature_size_),
       curvature_scratch_(static_cast<size_t>(system.partition().num_chunks()) * curvature_scratch_size(set.num_examples)),
       chunk_energy_(system.partition().num_chunks()),
       chunk_inverted_(system.partition().num_chunks()),
-      outer_products_(static_cast<size_t>(system.partition().num_chunks()) * 3 * num_weights_ *
-                      row_width(3 * (num_weights_ + 1))) {
+      outer_products_(static_cast<size_t>(system.partition().num_chunks()) *
+                      (regions != nullptr && regions->num_regions > 1
+                           ? num_weights_ * (num_weights_ + 1)
+                           : 3 * num_weights_ * row_width(3 * (num_weights_ + 1)))) {
   const int k = num_weights_;
   const size_t chunks = partition_.num_chunks();
   all_columns_.resize(k);
@@ -271,6 +276,16 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
     region_source_.resize(chunks * row_width(3 * (k + 1)));
     region_lane_weights_.resize(chunks * set.num_examples * kCurvatureBatches * L);
     region_curvature_.resize(chunks * k * k);
+    region_active_.resize(chunks * regions_->num_regions);
+    chunk_regions_.resize(chunks);
+    for (size_t chunk = 0; chunk < chunks; ++chunk) {
+      std::vector<int>& present = chunk_regions_[chunk];
+      for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1]; ++batch)
+        present.insert(present.end(), regions_->batch_regions(batch),
+                       regions_->batch_regions(batch) + regions_->batch_region_count(batch));
+      std::sort(present.begin(), present.end());
+      present.erase(std::unique(present.begin(), present.end()), present.end());
+    }
   }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
@@ -359,6 +374,10 @@ void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, co
   int* columns = regions_ ? region_columns_.data() + static_cast<size_t>(chunk) * k : nullptr;
   int* batch_source = regions_ ? region_source_.data() + static_cast<size_t>(chunk) * row_width(3 * (k + 1)) : nullptr;
   const int end = partition_.batch_start[chunk + 1];
+  if (several_regions())  // only the blocks of the regions this chunk's batches carry
+    for_chunk_region_blocks(chunk, [&](int a, int b) {
+      std::fill(jtj_lanes + (static_cast<size_t>(a) * k + b) * L, jtj_lanes + (static_cast<size_t>(a) * k + b + 1) * L, 0.0);
+    });
   for (int batch = partition_.batch_start[chunk]; batch < end; ++batch) {
     if (batch + 1 < end) prefetch_rows(rhs_, stride_, corner_row + 3 * static_cast<size_t>(batch + 1) * L, 3 * L);
     const double* block = out;  // F_j, then the Jacobian's columns of the batch
@@ -398,7 +417,7 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
   const int rows = system_.num_rows();
   const int all_rows = rows + partition_.num_extra_rows();
   const int chunks = partition_.num_chunks();
-  std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
+  if (!several_regions()) std::fill(jtj_lanes_.begin(), jtj_lanes_.end(), 0.0);
   std::fill(jts_lanes_.begin(), jts_lanes_.end(), 0.0);
   std::fill(handle_jts_.begin(), handle_jts_.end(), 0.0);
   const std::vector<int> source = regions_ != nullptr ? std::vector<int>() : column_sources(k, with_jacobian, stride_);
@@ -423,19 +442,47 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
     const double* extra = rhs_ + static_cast<size_t>(rows + e) * stride_;
     for (int i = 0; i < stride_; ++i) row[i] += extra[i];
   }
-  sum_chunks(jtj_lanes_, k * k * L);
   sum_chunks(jts_lanes_, k * L);
   sum_chunks(handle_jts_, k);
   jts_ = Eigen::Map<const Eigen::VectorXd>(handle_jts_.data(), k);
+  for (int a = 0; a < k; ++a)
+    for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
+  if (several_regions()) {
+    sum_region_blocks();
+    return;
+  }
+  sum_chunks(jtj_lanes_, k * k * L);
   jtj_.resize(k, k);
   for (int a = 0; a < k; ++a) {
-    for (int l = 0; l < L; ++l) jts_(a) += jts_lanes_[a * L + l];
     for (int b = 0; b <= a; ++b) {
       double sum = 0.0;
       for (int l = 0; l < L; ++l) sum += jtj_lanes_[(a * k + b) * L + l];
       jtj_(a, b) = jtj_(b, a) = sum;
     }
   }
+}
+
+void PoseEvaluator::for_chunk_region_blocks(int chunk, const std::function<void(int, int)>& visit) const {
+  const int e = set_.num_examples;
+  const std::vector<int>& present = chunk_regions_[chunk];
+  for (size_t t = 0; t < present.size(); ++t)
+    for (size_t q = 0; q <= t; ++q)
+      for (int a = present[t] * e; a < (present[t] + 1) * e; ++a)
+        for (int b = present[q] * e; b < (present[q] + 1) * e && b <= a; ++b) visit(a, b);
+}
+
+void PoseEvaluator::sum_region_blocks() {
+  const int k = num_weights_;
+  jtj_.setZero(k, k);
+  for (int chunk = 0; chunk < partition_.num_chunks(); ++chunk) {
+    const double* lanes = jtj_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+    for_chunk_region_blocks(chunk, [&](int a, int b) {
+      double sum = 0.0;
+      for (int l = 0; l < L; ++l) sum += lanes[(static_cast<size_t>(a) * k + b) * L + l];
+      jtj_(a, b) += sum;
+    });
+  }
+  jtj_.triangularView<Eigen::StrictlyUpper>() = jtj_.transpose();
 }
 
 void PoseEvaluator::sum_chunks(std::vector<double>& per_chunk, int size) const {
@@ -499,7 +546,7 @@ void PoseEvaluator::add_region_curvature(const double* weights, int chunk) {
   const int e = set_.num_examples, k = num_weights_, count = regions_->num_regions;
   constexpr int N = kCurvatureBatches * L;
   float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(e);
-  double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+  double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * curvature_size_;
   double* dense = region_curvature_.data() + static_cast<size_t>(chunk) * k * k;
   double* lane_weight = region_lane_weights_.data() + static_cast<size_t>(chunk) * e * N;
   const int batches = set_.features.num_batches;
@@ -554,13 +601,13 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
       continue;
     }
     float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(k);
-    double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * k * k * L;
+    double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * curvature_size_;
     for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
          batch += kCurvatureBatches)
       add_residual_curvature(set_.features, weights, batch, residual_.data() + static_cast<size_t>(batch) * 6 * L,
                              scratch, lanes, blend_);
   }
-  sum_chunks(curvature_lanes_, k * k * L);
+  sum_chunks(curvature_lanes_, curvature_size_);
   // Without regions one block of #E = K; with them one per region, at region r's offset r #E #E L.
   const int blocks = regions_ != nullptr ? regions_->num_regions : 1;
   for (int r = 0; r < blocks; ++r) {
@@ -587,18 +634,8 @@ double PoseEvaluator::region_smoothness_energy(const double* weights, Eigen::Vec
   return w.cwiseProduct(mw).sum();
 }
 
-void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+void PoseEvaluator::global_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx) {
   const int k = num_weights_;
-  const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
-  stride_ = row_width(nrhs);
-  assemble(weights, with_jacobian);
-  system_.forward_solve(rhs_, stride_, nrhs, team_);
-  out.weights.assign(weights, weights + k);
-  if (!with_jacobian) return;
-  // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
-  // the outer products of the forward-solved rows, summed over the coordinates.
-  Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
-  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
   std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
   const int chunks = partition_.num_chunks();
   const int outer_size = 3 * k * stride_;
@@ -613,6 +650,41 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
       htx(a) += p[c];
       for (int b = 0; b < k; ++b) hth(a, b) += p[3 + c * k + b];
     }
+}
+
+void PoseEvaluator::region_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx) {
+  const int k = num_weights_, e = set_.num_examples, count = regions_->num_regions;
+  std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
+  const int chunks = partition_.num_chunks();
+  const int outer_size = k * (k + 1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team_)
+  for (int chunk = 0; chunk < chunks; ++chunk)
+    add_region_outer_products(rhs_, partition_.row_start[chunk], partition_.row_start[chunk + 1], count, e, stride_,
+                              region_active_.data() + static_cast<size_t>(chunk) * count,
+                              outer_products_.data() + static_cast<size_t>(chunk) * outer_size);
+  sum_chunks(outer_products_, outer_size);
+  for (int a = 0; a < k; ++a) {
+    htx(a) = outer_products_[static_cast<size_t>(a) * (k + 1)];
+    for (int b = 0; b < k; ++b) hth(a, b) = region_outer_product(outer_products_.data(), count, e, a, b);
+  }
+}
+
+void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+  const int k = num_weights_;
+  const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
+  stride_ = row_width(nrhs);
+  assemble(weights, with_jacobian);
+  system_.forward_solve(rhs_, stride_, nrhs, team_);
+  out.weights.assign(weights, weights + k);
+  if (!with_jacobian) return;
+  // H^T K'^{-1} H and H^T x0 as (L^{-1} H)^T (L^{-1} H) and (L^{-1} H)^T (L^{-1} b): entries of
+  // the outer products of the forward-solved rows, summed over the coordinates.
+  Eigen::MatrixXd hth = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd htx = Eigen::VectorXd::Zero(k);
+  if (regions_ != nullptr && regions_->num_regions > 1)
+    region_products(hth, htx);
+  else
+    global_products(hth, htx);
   const Eigen::Map<const Eigen::VectorXd> w(weights, k);
   out.schur = jtj_ - 0.5 * (hth + hth.transpose());
   out.schur.diagonal().array() += regularization_;

@@ -8,6 +8,7 @@
 // with H = G'^T J, s = F(w) - (handles' part of Q) and x0 = K'^{-1} G'^T s (DESIGN.md section 2).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -102,8 +103,20 @@ class PoseEvaluator {
   // The triangle-varying weights of `lanes` triangles from first (internal order) at the region
   // weights (K): #E rows of `row` doubles, zero beyond lanes.
   void lane_weights(const double* weights, int first, int lanes, int row, double* out) const;
+  // More than one region: J^T J is block sparse, each chunk's only in its regions' blocks.
+  bool several_regions() const { return regions_ != nullptr && regions_->num_regions > 1; }
+  // Calls visit(a, b) for the entries b <= a of J^T J (K by K) in the blocks of pairs of regions
+  // that chunk carries (chunk_regions_), region pair by region pair.
+  void for_chunk_region_blocks(int chunk, const std::function<void(int, int)>& visit) const;
+  // With several regions: jtj_ from the chunks' blocks of jtj_lanes_ (lanes, then chunks in order).
+  void sum_region_blocks();
   // per_chunk: #chunks slices of `size` doubles; adds slices 1.. to slice 0, in chunk order.
   void sum_chunks(std::vector<double>& per_chunk, int size) const;
+  // From the forward-solved rhs_: hth += H^T K'^{-1} H (K by K) and htx += H^T x0 (K), all K
+  // columns in every row (global_products) or only the regions each row carries (region_products,
+  // with more than one region; region_outer_products.h).
+  void global_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx);
+  void region_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx);
   // assemble(), the forward solve, and with the Jacobian the Gauss-Newton system (out.weights,
   // out.schur, out.step_rhs).
   void assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out);
@@ -153,11 +166,17 @@ class PoseEvaluator {
   std::vector<double> jtj_lanes_;        // K by K by kLanes: J^T J, per lane
   std::vector<double> jts_lanes_;        // K by kLanes: J^T F, per lane
   std::vector<double> handle_jts_;       // K: -J^T (handles' part of Q)
-  std::vector<double> curvature_lanes_;  // K by K by kLanes: sum <R, d2F>, per lane
+  // #E by #E by kLanes per region (one block without regions): sum <R, d2F>, per lane.
+  int curvature_size_;
+  std::vector<double> curvature_lanes_;
   std::vector<float> curvature_scratch_;  // curvature_scratch_size(#E): add_residual_curvature's
   std::vector<double> chunk_energy_;     // 1: the chunk's residual energy
   std::vector<std::vector<int>> chunk_inverted_;  // the chunk's inverted triangles
-  std::vector<double> outer_products_;   // 3 K by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_)
+  // Without regions, 3 K by stride_: sum_u (L^{-1} H)_u^T (row u of rhs_); with them K by K + 1
+  // (add_region_outer_products).
+  std::vector<double> outer_products_;
+  std::vector<int> region_active_;       // #regions: the regions a row carries
+  std::vector<std::vector<int>> chunk_regions_;  // ascending: the regions of the chunk's batches
   Eigen::MatrixXd jtj_;                  // K by K
   Eigen::VectorXd jts_;                  // K: J^T s
 };
