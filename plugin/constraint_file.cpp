@@ -2,7 +2,31 @@
 
 #include "meshik/constraints/constraint_file.h"
 
+#include <string>
+
 namespace meshik::plugin {
+
+namespace {
+
+// #V region ids of the document's vertex-group regions (-1: in no group), or empty without them.
+// Throws ConstraintError naming the file and group of a vertex out of range.
+std::vector<int> vertexRegions(const meshik::constraints::ConstraintDocument& document, int num_vertices) {
+  std::vector<int> regions;
+  if (!document.regions || document.regions->groups.empty()) return regions;
+  regions.assign(num_vertices, -1);
+  const auto& groups = document.regions->groups;
+  for (std::size_t number = 0; number < groups.size(); ++number)
+    for (const std::int64_t v : groups[number].vertices) {
+      if (v < 0 || v >= num_vertices)
+        throw meshik::constraints::ConstraintError(document.source + ": regions." + groups[number].name + ": vertex " +
+                                                   std::to_string(v) + " is out of range (the rest mesh has " +
+                                                   std::to_string(num_vertices) + " vertices)");
+      regions[v] = static_cast<int>(number);
+    }
+  return regions;
+}
+
+}  // namespace
 
 ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, const double* rest_vertices,
                                     int num_vertices) {
@@ -16,6 +40,7 @@ ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, c
   result.handles.assign(resolved.handles.begin(), resolved.handles.end());
   const std::size_t last_frame = 3 * resolved.handles.size() * static_cast<std::size_t>(chosen);
   result.targets.assign(resolved.targets.begin() + static_cast<std::ptrdiff_t>(last_frame), resolved.targets.end());
+  result.vertex_regions = vertexRegions(document, num_vertices);
   return result;
 }
 

@@ -100,6 +100,7 @@ HandleTargets constraintFileTargets(const RichParameterList& parameters, const M
                       .arg(frame.name)
                       .arg(frame.index)
                       .arg(QFileInfo(path).fileName());
+  result.vertex_regions = frame.vertex_regions;
   const std::vector<int> selected = selectedVertices(rest);
   if (selected.empty()) {
     result.handles = frame.handles;
@@ -131,7 +132,7 @@ void sortByVertex(HandleTargets& handle_targets) {
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](size_t a, size_t b) { return handle_targets.handles[a] < handle_targets.handles[b]; });
-  HandleTargets sorted{{}, {}, handle_targets.source};
+  HandleTargets sorted{{}, {}, handle_targets.source, handle_targets.vertex_regions};
   for (size_t i : order) {
     sorted.handles.push_back(handle_targets.handles[i]);
     sorted.targets.insert(sorted.targets.end(), handle_targets.targets.begin() + 3 * i,

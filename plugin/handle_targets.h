@@ -25,13 +25,15 @@ struct HandleTargets {
   std::vector<int> handles;     // #H ascending vertex indices
   std::vector<double> targets;  // #H by 3 row-major targets, in the order of handles
   QString source;               // where the targets came from, for the log
+  // A constraint file's vertex-group regions (ConstraintFrame::vertex_regions), else empty.
+  std::vector<int> vertex_regions;
 };
 
 // The handles and targets for the rest layer (#V by 3 row-major `rest_positions`):
 //   target layer:     the selected vertices, at their positions in `target` (from targetLayer());
 //   handle transform: the selected vertices, moved by the 4x4 matrix;
 //   constraint file:  the file's handles in the chosen frame; when vertices are selected, only
-//                     those (each must be one of the file's handles).
+//                     those (each must be one of the file's handles); and its vertex-group regions.
 // Throws MLException when no vertex is selected (layer / transform) or on a bad constraint file.
 HandleTargets handleTargets(const RichParameterList& parameters, const MeshModel& rest,
                             const std::vector<double>& rest_positions, const MeshModel* target);

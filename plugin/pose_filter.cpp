@@ -34,7 +34,8 @@ RichParameterList poseParameters(const MeshDocument& document) {
       "regions", 1, "Regions",
       "Spatially varying weights: 1 = one weight vector for the whole mesh; N >= 2 = one per region, N regions "
       "clustered from how the examples deform (so legs can take one example's stride and the body another's), "
-      "blended smoothly across their borders; 0 = the count chosen from the examples."));
+      "blended smoothly across their borders; 0 = the count chosen from the examples. A constraint file whose "
+      "regions are vertex groups gives one region per group instead (and one for the vertices in none)."));
   parameters.addParam(RichFloat(
       "regionsmoothness", 0.01f, "Region smoothness",
       "Pull between neighbouring regions' weights (with few handles it makes them one global vector)."));
@@ -69,6 +70,7 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   const int regions = parameters.getInt("regions");
   if (regions < 0) throw MLException("regions: expected 0 (automatic) or a count of at least 1");
   options.regions = regions == 0 ? kAutomaticRegions : regions;
+  options.vertex_regions = handle_targets.vertex_regions;
   options.region_smoothness = parameters.getFloat("regionsmoothness");
   if (!(options.region_smoothness >= 0.0)) throw MLException("regionsmoothness: expected a number >= 0");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
@@ -97,6 +99,8 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
           .arg(handle_targets.handles.size())
           .arg(handle_targets.source)
           .arg(layers.examples.size()));
+  if (!options.vertex_regions.empty())
+    log(QStringLiteral("MeshIK pose: %1 regions from the constraint file's vertex groups").arg(solver->num_regions()));
   log(QStringLiteral("MeshIK pose: weights %1, %2 iterations%3, residual %4")
           .arg(formatWeights(result.weights))
           .arg(result.iterations)

@@ -122,6 +122,12 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--cache-mb", type=_non_negative_int, default=512, metavar="MB",
                        help="memory per worker for example sets shared by several jobs (default 512; 0: no cache)")
     _job_options(batch)
+    batch.add_argument("--blend", choices=("affine", "free"), default=None,
+                       help="blend of the examples' stretches for the jobs whose constraint file does not set one: "
+                            "affine (tied to the rest pose, default) or free (the paper's)")
+    batch.add_argument("--regions", type=_region_count, default=None, metavar="N",
+                       help="regions for the jobs whose constraint file does not set them: spatially varying weights "
+                            "over N regions clustered from the examples, or auto (1: one weight vector, the default)")
     batch.set_defaults(run=_run_batch)
 
     blend = commands.add_parser("blend", help="blend the example poses with given weights (no handles)",
@@ -230,7 +236,9 @@ def _run_batch(args) -> int:
                          simplify=args.simplify, simplifier=args.simplifier, formats=parse_formats(args.formats),
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
                          threads=args.threads, glb=args.glb, position_bits=args.position_bits,
-                         glb_targets=args.glb_targets, simplify_first=args.simplify_first)
+                         glb_targets=args.glb_targets, simplify_first=args.simplify_first,
+                         solver_defaults={name: value for name, value in (("blend", args.blend), ("regions", args.regions))
+                                          if value is not None})
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
         _print_line(f"meshik: {len(failed)} of {len(outcomes)} jobs failed: {', '.join(o.name for o in failed)}", sys.stderr)

@@ -52,7 +52,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
              glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
              glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
-             regions: Union[None, int, str] = None) -> Dict[str, Any]:
+             regions: Union[None, int, str] = None, solver_defaults: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -63,6 +63,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
     blend / regions: override the file's ("affine" or "free"; a region count or "auto");
+    solver_defaults: "blend" and / or "regions" as above, for a file that does not set them (a batch's
+                     --blend / --regions);
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
@@ -88,7 +90,13 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         raise PipelineError(f"position bits must be between 1 and {MAX_POSITION_BITS}, got {position_bits}")
     check_writable(out_dir)
     _check_choice("blend", blend, constraint_files.BLENDS + (None,))
-    solver_options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
+    defaults = dict(solver_defaults or {})
+    unknown = sorted(set(defaults) - {"blend", "regions"})
+    if unknown:
+        raise PipelineError(f"solver defaults may set blend and regions only, got {', '.join(unknown)}")
+    _check_choice("default blend", defaults.get("blend"), constraint_files.BLENDS + (None,))
+    solver_options = dict({"feature_space": "nonlinear"}, **defaults)
+    solver_options.update(constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
     if blend:

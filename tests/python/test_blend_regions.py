@@ -1,6 +1,6 @@
 """Issue 28 through the Python API and the pipeline: the free blend and spatially varying weights
 (meshik.Solver(blend=..., regions=...)), the constraint file's "blend", "regions" and
-"region_smoothness" (reader and schema), and `meshik pose --blend/--regions` end to end."""
+"region_smoothness" (reader and schema), and `meshik pose` and `meshik batch` with --blend/--regions end to end."""
 import json
 
 import jsonschema
@@ -129,3 +129,17 @@ def test_meshik_pose_uses_the_settings(tube_set, tmp_path, file_settings, flags)
     report = json.loads((out / "report.json").read_text())
     assert report["solver"]["blend"] == "free"
     assert report["solver"]["regions"] == (2 if flags else {"low": list(range(40))})
+
+
+def test_meshik_batch_settings_apply_where_the_file_sets_none(tube_set, tmp_path):
+    """`meshik batch --blend/--regions`: the jobs whose file says nothing take them; a file's own settings stay."""
+    folder = tube_set["rest"].parent
+    says = write_constraints(folder / "batch_says.json",
+                             dict(tube_constraints(tube_set, frames=2), blend="affine", regions={"low": list(range(40))}))
+    silent = write_constraints(folder / "batch_silent.json", tube_constraints(tube_set, frames=2))
+    out = tmp_path / "out"
+    assert main(["batch", str(says), str(silent), "--out", str(out), "--jobs", "1", "--format", "ply", "--quiet",
+                 "--blend", "free", "--regions", "2"]) == 0
+    solver_of = {name: json.loads((out / name / "report.json").read_text())["solver"] for name in ("batch_says", "batch_silent")}
+    assert (solver_of["batch_says"]["blend"], solver_of["batch_says"]["regions"]) == ("affine", {"low": list(range(40))})
+    assert (solver_of["batch_silent"]["blend"], solver_of["batch_silent"]["regions"]) == ("free", 2)

@@ -65,6 +65,32 @@ def test_pose_from_constraint_file_equals_python_api(name):
     assert relative_error(ms.mesh(by_name["layer_id"]).vertex_matrix(), expected.vertices) < 1e-12
 
 
+def test_pose_takes_the_constraint_file_vertex_group_regions(tmp_path):
+    constraints = pytest.importorskip("meshik.inputs.constraints", reason="the pipeline's constraint-file reader")
+    ms, rest, faces, examples = load_sample("limb")
+    rest_path, example_paths = sample_files("limb")
+    document = json.loads((SAMPLES / "limb" / "animation.json").read_text())
+    low = np.flatnonzero(rest[:, 1] < np.median(rest[:, 1]))
+    document.update(rest=str(rest_path), examples=[str(p) for p in example_paths],
+                    regions={"low": low[: len(low) // 2].tolist(), "middle": low[len(low) // 2:].tolist()})
+    path = tmp_path / "grouped.json"
+    path.write_text(json.dumps(document))
+    resolved = constraints.resolve(constraints.load(path), rest)
+    output = ms.apply_filter(POSE, targetsource="Constraint file", constraintfile=str(path), frame="1")
+    ids = constraints.region_vertex_groups(document["regions"], len(rest), path)
+    order = np.argsort(resolved.handles)
+    expected = python_pose(rest, faces, examples, resolved.handles[order], resolved.targets[1][order], regions=ids)
+    assert len(expected.weights) == 3 * len(examples)  # two groups and the vertices in none
+    # The same pose; the weights of these handle-poor regions are ill-conditioned (agree to 1e-6, not 1e-9).
+    assert relative_error(ms.mesh(output["layer_id"]).vertex_matrix(), expected.vertices) < 1e-9
+    np.testing.assert_allclose(output["weights"], expected.weights, rtol=1e-6, atol=1e-9)
+    assert output["iterations"] == expected.iterations
+    document["regions"] = {"low": [len(rest)]}
+    path.write_text(json.dumps(document))
+    message = apply_refused(ms, POSE, targetsource="Constraint file", constraintfile=str(path), frame="1")
+    assert f"regions.low: vertex {len(rest)} is out of range" in message
+
+
 def test_pose_from_target_layer_equals_python_api_on_horse(shared_data):
     rest_path, example_paths = example_set_files(shared_data / "horse-poses")
     _, gallop_paths = example_set_files(shared_data / "horse-gallop")

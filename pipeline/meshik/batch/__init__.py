@@ -116,7 +116,7 @@ def run_batch(constraint_paths: Sequence, out_dir, client=None, jobs: Optional[i
     client: a distributed.Client to run on; without one, batch_client(jobs, memory_limit,
     scheduler, retries) makes one for the batch. cache_mb: each worker's example-set cache bound.
     job_options: JSON-friendly keyword arguments of pose_job (simplify, simplifier, simplify_first, formats,
-    feature_space, quantization_bits, force). Returns one JobOutcome per file, in the order given;
+    feature_space, quantization_bits, force, solver_defaults). Returns one JobOutcome per file, in the order given;
     failures are printed even when quiet. Ctrl+C or SIGTERM stops the batch: no job is left running
     or writing (on a given client, the workers running this batch's jobs are restarted), the
     report lists the unfinished jobs as "interrupted", and KeyboardInterrupt is raised.

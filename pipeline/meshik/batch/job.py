@@ -33,7 +33,7 @@ def run_job(constraints: str, destination: str, options: Dict[str, Any], cache_b
     """Pose one constraint file into `destination` with meshik.pipeline.pose_job.
 
     options: pose_job keyword arguments (simplify, simplifier, simplify_first, formats, feature_space,
-    quantization_bits, force); cache_bytes: memory bound of this process's example-set cache
+    quantization_bits, force, solver_defaults); cache_bytes: memory bound of this process's example-set cache
     (0: no cache). Returns {"status": "done" | "skipped" | "failed", "reason": message or None,
     "frames": frame count, "seconds": time in this function, "worker": "host:pid"}.
     """
