@@ -239,27 +239,30 @@ double* aligned_start(std::vector<double>& storage, size_t count) {
 
 PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system,
                              FeatureSpace space, double regularization, const double* targets,
-                             EvaluationBuffers& buffers, int team, Blend blend, const BlendRegions* regions)
+                             EvaluationBuffers& buffers, int team, Blend blend, const BlendRegions* regions,
+                             const ExampleFeatures* features)
     : set_(set),
       system_(system),
       partition_(system.partition()),
       space_(space),
       blend_(blend),
       regions_(regions),
-      num_weights_(regions != nullptr ? regions->num_regions * set.num_examples : set.num_examples),
+      features_(features != nullptr ? *features : set.features),
+      num_examples_(features_.num_examples),
+      num_weights_(regions != nullptr ? regions->num_regions * num_examples_ : num_examples_),
       regularization_(regularization),
       targets_(targets),
       team_(team),
       handle_offset_(6 * system.handle_triangles().size(), 0.0),
-      batch_has_handle_(set.features.num_batches, 0),
-      batch_out_(static_cast<size_t>(partition_.num_chunks()) * blend_batch_size(set.num_examples)),
+      batch_has_handle_(features_.num_batches, 0),
+      batch_out_(static_cast<size_t>(partition_.num_chunks()) * blend_batch_size(num_examples_)),
       residual_(buffers.residual),
       jtj_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * num_weights_ * L),
       jts_lanes_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_ * L),
       handle_jts_(static_cast<size_t>(system.partition().num_chunks()) * num_weights_),
-      curvature_size_((regions != nullptr ? regions->num_regions : 1) * set.num_examples * set.num_examples * L),
+      curvature_size_((regions != nullptr ? regions->num_regions : 1) * num_examples_ * num_examples_ * L),
       curvature_lanes_(static_cast<size_t>(system.partition().num_chunks()) * curvature_size_),
-      curvature_scratch_(static_cast<size_t>(system.partition().num_chunks()) * curvature_scratch_size(set.num_examples)),
+      curvature_scratch_(static_cast<size_t>(system.partition().num_chunks()) * curvature_scratch_size(num_examples_)),
       chunk_energy_(system.partition().num_chunks()),
       chunk_inverted_(system.partition().num_chunks()),
       outer_products_(static_cast<size_t>(system.partition().num_chunks()) *
@@ -274,7 +277,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
     region_out_.resize(chunks * 6 * (k + 1) * L);
     region_columns_.resize(chunks * k);
     region_source_.resize(chunks * row_width(3 * (k + 1)));
-    region_lane_weights_.resize(chunks * set.num_examples * kCurvatureBatches * L);
+    region_lane_weights_.resize(chunks * num_examples_ * kCurvatureBatches * L);
     region_curvature_.resize(chunks * k * k);
     region_active_.resize(chunks * regions_->num_regions);
     chunk_regions_.resize(chunks);
@@ -289,7 +292,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
-  residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
+  residual_.resize(6 * L * static_cast<size_t>(features_.num_batches));
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
   for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {
@@ -310,7 +313,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
 }
 
 void PoseEvaluator::lane_weights(const double* weights, int first, int lanes, int row, double* out) const {
-  const int e = set_.num_examples, count = regions_->num_regions;
+  const int e = num_examples_, count = regions_->num_regions;
   std::fill(out, out + static_cast<size_t>(e) * row, 0.0);
   for (int l = 0; l < lanes; ++l) {
     const double* share = regions_->share.data() + static_cast<size_t>(first + l) * count;
@@ -323,16 +326,16 @@ void PoseEvaluator::lane_weights(const double* weights, int first, int lanes, in
 
 int PoseEvaluator::blend_region_batch(const double* weights, bool with_jacobian, int batch, int chunk,
                                       double* region_out, int* columns, int* source) {
-  const int e = set_.num_examples, k = num_weights_, count = regions_->num_regions;
+  const int e = num_examples_, k = num_weights_, count = regions_->num_regions;
   const int first = batch * L, lanes = std::min(L, set_.num_triangles - first);
   double* out = batch_out_.data() + static_cast<size_t>(chunk) * blend_batch_size(e);
   const int whole = regions_->whole_region[batch];
   if (whole >= 0) {
-    blend_batch(set_.features, space_, weights + whole * e, batch, out, blend_);
+    blend_batch(features_, space_, weights + whole * e, batch, out, blend_);
   } else {
     double* lane_weight = region_lane_weights_.data() + static_cast<size_t>(chunk) * e * kCurvatureBatches * L;
     lane_weights(weights, first, lanes, L, lane_weight);
-    blend_batch_lanes(set_.features, space_, blend_, lane_weight, batch, out);
+    blend_batch_lanes(features_, space_, blend_, lane_weight, batch, out);
   }
   std::copy(out, out + 6 * L, region_out);
   int n = 0;
@@ -361,7 +364,7 @@ int PoseEvaluator::blend_region_batch(const double* weights, bool with_jacobian,
 }
 
 void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, const int* source, int chunk) {
-  const int e = set_.num_examples;
+  const int e = num_examples_;
   const int k = num_weights_;
   const int m = set_.num_triangles;
   const std::vector<int>& slot_of_triangle = system_.handle_triangle_slot();
@@ -388,7 +391,7 @@ void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, co
       block = region_out;
       block_source = batch_source;
     } else {
-      blend_batch(set_.features, space_, weights, batch, out, blend_);
+      blend_batch(features_, space_, weights, batch, out, blend_);
     }
     std::copy(block, block + 6 * L, residual_.data() + static_cast<size_t>(batch) * 6 * L);
     const int first = batch * L;
@@ -463,7 +466,7 @@ void PoseEvaluator::assemble(const double* weights, bool with_jacobian) {
 }
 
 void PoseEvaluator::for_chunk_region_blocks(int chunk, const std::function<void(int, int)>& visit) const {
-  const int e = set_.num_examples;
+  const int e = num_examples_;
   const std::vector<int>& present = chunk_regions_[chunk];
   for (size_t t = 0; t < present.size(); ++t)
     for (size_t q = 0; q <= t; ++q)
@@ -543,26 +546,26 @@ double PoseEvaluator::pose_and_residual(double* vertices, std::vector<int>& inve
 }
 
 void PoseEvaluator::add_region_curvature(const double* weights, int chunk) {
-  const int e = set_.num_examples, k = num_weights_, count = regions_->num_regions;
+  const int e = num_examples_, k = num_weights_, count = regions_->num_regions;
   constexpr int N = kCurvatureBatches * L;
   float* scratch = curvature_scratch_.data() + static_cast<size_t>(chunk) * curvature_scratch_size(e);
   double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * curvature_size_;
   double* dense = region_curvature_.data() + static_cast<size_t>(chunk) * k * k;
   double* lane_weight = region_lane_weights_.data() + static_cast<size_t>(chunk) * e * N;
-  const int batches = set_.features.num_batches;
+  const int batches = features_.num_batches;
   for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
        batch += kCurvatureBatches) {
     const double* residual = residual_.data() + static_cast<size_t>(batch) * 6 * L;
     const int whole = regions_->whole_region[batch];
     if (whole >= 0 && (batch + 1 >= batches || regions_->whole_region[batch + 1] == whole)) {
       // Inside one region: as without regions, into that region's block (#E by #E by kLanes).
-      add_residual_curvature(set_.features, weights + whole * e, batch, residual, scratch,
+      add_residual_curvature(features_, weights + whole * e, batch, residual, scratch,
                              lanes + static_cast<size_t>(whole) * e * e * L, blend_);
       continue;
     }
     const int first = batch * L, pair_lanes = std::min(N, set_.num_triangles - first);
     lane_weights(weights, first, pair_lanes, N, lane_weight);
-    const float* curvature = residual_curvature_lanes(set_.features, blend_, lane_weight, batch, residual, scratch);
+    const float* curvature = residual_curvature_lanes(features_, blend_, lane_weight, batch, residual, scratch);
     // d2F_j/dW_ra dW_sb = alpha_jr alpha_js d2F_j/dw_a dw_b.
     for (int l = 0; l < pair_lanes; ++l) {
       const double* share = regions_->share.data() + static_cast<size_t>(first + l) * count;
@@ -586,7 +589,7 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
   if (at.evaluation == 0 || at.evaluation != evaluations_)
     throw std::logic_error("PoseEvaluator::add_second_order: not the evaluator's last evaluation");
   const int k = num_weights_;
-  const int e = set_.num_examples;
+  const int e = num_examples_;
   at.second_order.setZero(k, k);
   at.has_second_order = true;
   if (space_ == FeatureSpace::kLinear) return;
@@ -604,7 +607,7 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
     double* lanes = curvature_lanes_.data() + static_cast<size_t>(chunk) * curvature_size_;
     for (int batch = partition_.batch_start[chunk]; batch < partition_.batch_start[chunk + 1];
          batch += kCurvatureBatches)
-      add_residual_curvature(set_.features, weights, batch, residual_.data() + static_cast<size_t>(batch) * 6 * L,
+      add_residual_curvature(features_, weights, batch, residual_.data() + static_cast<size_t>(batch) * 6 * L,
                              scratch, lanes, blend_);
   }
   sum_chunks(curvature_lanes_, curvature_size_);
@@ -625,7 +628,7 @@ void PoseEvaluator::add_second_order(PoseEvaluation& at) {
 }
 
 double PoseEvaluator::region_smoothness_energy(const double* weights, Eigen::VectorXd* product) const {
-  const int k = num_weights_, e = set_.num_examples;
+  const int k = num_weights_, e = num_examples_;
   if (product != nullptr) product->setZero(k);
   if (regions_ == nullptr || regions_->num_regions == 1) return 0.0;
   const Eigen::Map<const Eigen::MatrixXd> w(weights, e, regions_->num_regions);  // column r: W_r
@@ -653,7 +656,7 @@ void PoseEvaluator::global_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx) 
 }
 
 void PoseEvaluator::region_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx) {
-  const int k = num_weights_, e = set_.num_examples, count = regions_->num_regions;
+  const int k = num_weights_, e = num_examples_, count = regions_->num_regions;
   std::fill(outer_products_.begin(), outer_products_.end(), 0.0);
   const int chunks = partition_.num_chunks();
   const int outer_size = k * (k + 1);
@@ -693,7 +696,7 @@ void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_
   // + W^T (M kron I) W: half its Hessian is M kron I, half its gradient (M kron I) W.
   Eigen::VectorXd smooth_gradient;
   region_smoothness_energy(weights, &smooth_gradient);
-  const int e = set_.num_examples;
+  const int e = num_examples_;
   for (int r = 0; r < regions_->num_regions; ++r)
     for (int s = 0; s < regions_->num_regions; ++s)
       out.schur.block(r * e, s * e, e, e).diagonal().array() += regions_->smoothness(r, s);

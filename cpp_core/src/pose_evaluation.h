@@ -54,9 +54,12 @@ class PoseEvaluator {
   // thread_count; every result is the same bits for any team: the passes run over the system's
   // fixed partition and combine its chunks in order). blend: how the stretches combine; regions:
   // spatially varying weights (outlives this), or nullptr for one weight vector (K = #E).
+  // features: the examples to blend instead of set.features (outlives this; e.g. with_rest_example's),
+  // or nullptr; #E is their count.
   PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& system, FeatureSpace space,
                 double regularization, const double* targets, EvaluationBuffers& buffers, int team = 1,
-                Blend blend = Blend::kAffine, const BlendRegions* regions = nullptr);
+                Blend blend = Blend::kAffine, const BlendRegions* regions = nullptr,
+                const ExampleFeatures* features = nullptr);
 
   // K: the number of weights an evaluation takes.
   int num_weights() const { return num_weights_; }
@@ -140,6 +143,8 @@ class PoseEvaluator {
   FeatureSpace space_;
   Blend blend_;
   const BlendRegions* regions_;  // nullptr: one weight vector
+  const ExampleFeatures& features_;  // the examples blended: set.features or the constructor's
+  int num_examples_;                 // #E: features_.num_examples
   int num_weights_;              // K
   double regularization_;
   const double* targets_;

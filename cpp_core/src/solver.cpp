@@ -9,6 +9,7 @@
 #include "linear_start.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
+#include "rest_example.h"
 #include "thread_count.h"
 
 namespace meshik {
@@ -23,6 +24,10 @@ struct Solver::Impl {
   std::unique_ptr<LinearStart> linear_start;
   // Spatially varying weights (SolverOptions::regions, vertex_regions), or null for one vector.
   std::unique_ptr<BlendRegions> regions;
+  // The free blend's examples: the rest pose, then the set's (rest_example.h); null for affine.
+  std::unique_ptr<ExampleFeatures> free_features;
+  // The examples a weight vector blends: #E, or #E + 1 with the free blend (the rest pose first).
+  int blended_examples() const { return free_features ? free_features->num_examples : examples->num_examples(); }
   // Evaluation buffers of finished solves, reused by the next ones (one per concurrent solve).
   std::mutex pool_mutex;
   BuffersPool pool;
@@ -73,6 +78,7 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   const int team = thread_count(options.threads);
   impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
   impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, team);
+  if (options.blend == Blend::kFree) impl_->free_features = std::make_unique<ExampleFeatures>(with_rest_example(set.features));
   if (!options.vertex_regions.empty())
     impl_->regions = std::make_unique<BlendRegions>(
         regions_from_vertex_groups(set, options.vertex_regions, options.region_smoothness));
@@ -92,21 +98,28 @@ SolveResult Solver::solve(const double* targets, const double* initial_weights,
   const SolverOptions& options = impl_->options;
   BuffersLease lease(impl_->pool_mutex, impl_->pool);
   const int team = thread_count(options.threads);
+  const ExampleFeatures* features = impl_->free_features.get();  // null: the set's
+  const int blended = impl_->blended_examples();
   Eigen::VectorXd start;
   if (initial_weights == nullptr) {
     start = impl_->linear_start->weights(targets, options.weight_regularization);
+    if (features != nullptr) {  // the rest pose's weight 1 - sum w_i: the affine blend's stretch
+      Eigen::VectorXd with_rest(blended);
+      with_rest << 1.0 - start.sum(), start;
+      start = with_rest;
+    }
     if (impl_->regions) {
       // Regions start from the one global vector that solves the pose without them (from the
       // linear space's), every region alike: the regions' solve then only lowers that energy.
       PoseEvaluator global(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
-                           lease.buffers(), team, options.blend);
-      const SolveResult one = gauss_newton(global, set.num_examples, set.num_triangles, start.data(), options, {});
-      start = Eigen::Map<const Eigen::VectorXd>(one.weights.data(), set.num_examples).replicate(num_regions(), 1);
+                           lease.buffers(), team, options.blend, nullptr, features);
+      const SolveResult one = gauss_newton(global, blended, set.num_triangles, start.data(), options, {});
+      start = Eigen::Map<const Eigen::VectorXd>(one.weights.data(), blended).replicate(num_regions(), 1);
     }
     initial_weights = start.data();
   }
   PoseEvaluator evaluator(set, *impl_->system, options.feature_space, options.weight_regularization, targets,
-                          lease.buffers(), team, options.blend, impl_->regions.get());
+                          lease.buffers(), team, options.blend, impl_->regions.get(), features);
   SolveResult result =
       gauss_newton(evaluator, evaluator.num_weights(), set.num_triangles, initial_weights, options, progress);
   result.vertices = set.to_user(result.vertices);
@@ -120,7 +133,7 @@ const ExampleSet& Solver::examples() const { return *impl_->examples; }
 const std::vector<int>& Solver::handles() const { return impl_->handles; }
 const SolverOptions& Solver::options() const { return impl_->options; }
 int Solver::num_regions() const { return impl_->regions ? impl_->regions->num_regions : 1; }
-int Solver::num_weights() const { return num_regions() * impl_->examples->num_examples(); }
+int Solver::num_weights() const { return num_regions() * impl_->blended_examples(); }
 
 std::vector<int> Solver::triangle_regions() const {
   const ExampleSet::Impl& set = impl_->examples->impl();

@@ -405,7 +405,7 @@ NB_MODULE(_core, m) {
            "threads"_a = nb::none(), "feature_precision"_a = "single", "blend"_a = "affine",
            "regions"_a = 1, "region_smoothness"_a = 0.01,
            "blend: 'affine' (stretches tied to the rest, default) or 'free' (the paper's "
-           "sum_i w_i S_i); regions: 1 (one weight vector), a count of regions clustered from the "
+           "w_0 I + sum_i w_i S_i, the rest pose as example 0: k + 1 weights, the rest's first); regions: 1 (one weight vector), a count of regions clustered from the "
            "examples, 'auto', or (n,) vertex groups (-1: none); the weights are then (regions, k) "
            "flattened region-major; region_smoothness: pull between neighbouring regions' weights.")
       .def_static(

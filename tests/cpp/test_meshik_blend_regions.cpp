@@ -16,6 +16,7 @@
 #include "feature_space.h"
 #include "gauss_newton.h"
 #include "pose_evaluation.h"
+#include "rest_example.h"
 #include "pose_system.h"
 #include "test_meshik_support.h"
 
@@ -219,6 +220,17 @@ TEST_P(ReducedEnergy, FreeGradientAndHessianMatchFiniteDifferences) {
   meshik::PoseEvaluator evaluator(set_.impl(), system_, GetParam(), 0.5, problem_.targets.data(), buffers, 1,
                                   Blend::kFree);
   expect_exact_model(evaluator, {0.6, 0.8, -0.3});
+  // With the rest pose as example 0 (the Solver's free blend), alone and with regions.
+  const meshik::ExampleFeatures with_rest = meshik::with_rest_example(set_.impl().features);
+  meshik::PoseEvaluator rest_first(set_.impl(), system_, GetParam(), 0.5, problem_.targets.data(), buffers, 1,
+                                   Blend::kFree, nullptr, &with_rest);
+  ASSERT_EQ(rest_first.num_weights(), 4);
+  expect_exact_model(rest_first, {0.4, 0.6, 0.8, -0.3});
+  const meshik::BlendRegions regions = meshik::regions_from_examples(set_, 2, 0.7);
+  meshik::PoseEvaluator rest_regions(set_.impl(), system_, GetParam(), 0.5, problem_.targets.data(), buffers, 1,
+                                     Blend::kFree, &regions, &with_rest);
+  ASSERT_EQ(rest_regions.num_weights(), 8);
+  expect_exact_model(rest_regions, {0.4, 0.6, 0.8, -0.3, -0.2, 0.5, 0.9, -0.1});
 }
 
 TEST_P(ReducedEnergy, RegionGradientAndHessianMatchFiniteDifferences) {
@@ -316,12 +328,13 @@ TEST(BlendRegions, SolverWithRegionsReproducesEachExampleFromItsOwnHandles) {
     options.blend = blend;
     options.regions = 3;
     const meshik::Solver solver(set, handles, options);
+    const int per_region = blend == Blend::kFree ? 4 : 3;  // the free blend's rest pose first
     EXPECT_EQ(solver.num_regions(), 3);
-    EXPECT_EQ(solver.num_weights(), 9);
+    EXPECT_EQ(solver.num_weights(), 3 * per_region);
     for (int i = 0; i < 3; ++i) {
       const std::vector<double> targets = meshik_test::gather_rows(meshes.examples[i], handles);
       const meshik::SolveResult result = solver.solve(targets.data());
-      ASSERT_EQ(result.weights.size(), 9u);
+      ASSERT_EQ(result.weights.size(), static_cast<size_t>(3 * per_region));
       double worst = 0.0;
       for (size_t e = 0; e < result.vertices.size(); ++e)
         worst = std::max(worst, std::abs(result.vertices[e] - meshes.examples[i][e]));

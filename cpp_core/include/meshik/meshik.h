@@ -36,6 +36,9 @@ enum class FeatureSpace { kNonlinear, kLinear };
 //   kAffine: tied to the rest pose, S_j(w) = I + sum_i w_i (S_ij - I) (the default).
 //   kFree:   the paper's own blend, S_j(w) = sum_i w_i S_ij (linear space: sum_i w_i T_ij);
 //            w = 0 then collapses every triangle, so use it with weights that sum near one.
+//            A Solver's free blend holds the rest pose as example 0, as the paper's feature space
+//            does when the rest is one of the examples: S_j(w) = w_0 I + sum_i w_i S_ij (its
+//            weights are #E + 1, the rest's first), which contains the affine blend.
 // Both reproduce every example at w = e_i; the Jacobians are exact in both.
 enum class Blend { kAffine, kFree };
 
@@ -90,7 +93,7 @@ struct SolverOptions {
 // Result of one solve.
 struct SolveResult {
   std::vector<double> vertices;  // #V by 3 row-major posed vertex positions
-  std::vector<double> weights;   // #regions by #examples blend weights (region-major)
+  std::vector<double> weights;   // Solver::num_weights() blend weights (#regions by #examples, region-major)
   int iterations = 0;            // Gauss-Newton iterations taken
   double residual = 0.0;         // final energy ||G'x - (M(w) + c)||^2 + k ||w||^2
   bool converged = false;        // stopped by the tolerance rather than max_iterations
@@ -189,7 +192,7 @@ class Solver {
   const std::vector<int>& handles() const;
   const SolverOptions& options() const;
   // The regions of spatially varying weights (1 without them), and the weights a solve takes and
-  // returns: #regions by #E, region-major.
+  // returns: #regions by #E, region-major (#E + 1 per region with the free blend: the rest pose's first).
   int num_regions() const;
   int num_weights() const;
   // #F: the region with the largest share of each triangle (all 0 without regions).
