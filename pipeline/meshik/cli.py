@@ -94,12 +94,7 @@ def _parser() -> argparse.ArgumentParser:
                                            "report.json into DIR. Skips the job when DIR already holds its complete outputs.")
     pose.add_argument("constraints", metavar="CONSTRAINTS", help="constraint file (JSON, format meshik-constraints version 1)")
     _job_options(pose)
-    pose.add_argument("--blend", choices=("affine", "free"), default=None,
-                      help="override the constraint file's blend of the examples' stretches: affine (tied to the "
-                           "rest pose, default) or free (the paper's)")
-    pose.add_argument("--regions", type=_region_count, default=None, metavar="N",
-                      help="override the constraint file's regions: spatially varying weights over N regions "
-                           "clustered from the examples, or auto (1: one weight vector, the default)")
+    _blend_options(pose, "override the constraint file's {}")
     pose.set_defaults(run=_run_pose)
 
     batch = commands.add_parser("batch", help="pose many constraint files in parallel on Dask",
@@ -122,12 +117,7 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--cache-mb", type=_non_negative_int, default=512, metavar="MB",
                        help="memory per worker for example sets shared by several jobs (default 512; 0: no cache)")
     _job_options(batch)
-    batch.add_argument("--blend", choices=("affine", "free"), default=None,
-                       help="blend of the examples' stretches for the jobs whose constraint file does not set one: "
-                            "affine (tied to the rest pose, default) or free (the paper's)")
-    batch.add_argument("--regions", type=_region_count, default=None, metavar="N",
-                       help="regions for the jobs whose constraint file does not set them: spatially varying weights "
-                            "over N regions clustered from the examples, or auto (1: one weight vector, the default)")
+    _blend_options(batch, "{} for the jobs whose constraint file does not set it")
     batch.set_defaults(run=_run_batch)
 
     blend = commands.add_parser("blend", help="blend the example poses with given weights (no handles)",
@@ -203,6 +193,17 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="threads of the example-set precompute and of each solve (default: all cores for "
                              "pose, one per batch worker); the outputs are the same for any count")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
+
+
+def _blend_options(parser: argparse.ArgumentParser, role: str) -> None:
+    """Adds --blend and --regions; role: how they apply, with {} for what each sets (e.g. "override the
+    constraint file's {}")."""
+    parser.add_argument("--blend", choices=("affine", "free"), default=None,
+                        help=role.format("blend of the examples' stretches") + ": affine (tied to the rest pose, "
+                             "default) or free (the paper's, the rest pose as one more example)")
+    parser.add_argument("--regions", type=_region_count, default=None, metavar="N",
+                        help=role.format("regions") + ": spatially varying weights over N regions clustered from "
+                             "the examples, or auto (1: one weight vector, the default)")
 
 
 def _run_pose(args) -> int:
