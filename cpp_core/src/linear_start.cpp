@@ -43,7 +43,8 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, 
   // The features' stored values (float or double) are widened before they are multiplied.
   visit_feature_values(set.features, [&](const auto& values) {
     for (int j : system.handle_triangles()) {
-      const double* g = set.frames.gradient.data() + 6 * static_cast<size_t>(j);
+      double g[6];
+      corner_gradients(set.frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
       for (int q = 0; q < 3; ++q) {
         const int h = system.handle_of_vertex()[set.triangles[3 * j + q]];
         if (h < 0) continue;
