@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "feature_space.h"
+#include "huge_pages.h"
 #include "simd_clones.h"
 
 namespace meshik {
@@ -232,7 +233,7 @@ std::vector<int> column_sources(int k, bool with_jacobian, int stride) {
 // The first 64-byte boundary in storage, after sizing storage to hold `count` doubles from there.
 double* aligned_start(std::vector<double>& storage, size_t count) {
   constexpr size_t kLineDoubles = 64 / sizeof(double);
-  storage.resize(count + kLineDoubles);
+  size_work_on_huge_pages(storage, count + kLineDoubles);
   const size_t misalignment = reinterpret_cast<uintptr_t>(storage.data()) / sizeof(double) % kLineDoubles;
   return storage.data() + (kLineDoubles - misalignment) % kLineDoubles;
 }
@@ -278,7 +279,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
-  residual_.resize(6 * L * static_cast<size_t>(set.features.num_batches));
+  size_work_on_huge_pages(residual_, 6 * L * static_cast<size_t>(set.features.num_batches));
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
   for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {
