@@ -95,8 +95,8 @@ void time_phases(const std::string& name, const fs::path& dir, int repeats, cons
   const auto factor = alternate_medians(repeats, variants.size(), [&](size_t v) {
     meshik::PoseSystem(*variants[v].set, handles, {}, variants[v].team);
   });
-  const Eigen::VectorXd weights = meshik::LinearStart(set, single_system).weights(targets.data(), 0.0);
   meshik::EvaluationBuffers buffers;
+  const Eigen::VectorXd weights = meshik::LinearStart(set, single_system, buffers).weights(targets.data(), 0.0);
   meshik::PoseEvaluation at;
   const auto evaluate = alternate_medians(repeats, variants.size(), [&](size_t v) {
     meshik::PoseEvaluator(*variants[v].set, *variants[v].system, meshik::FeatureSpace::kNonlinear, 0.0,

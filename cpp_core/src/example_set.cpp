@@ -7,6 +7,7 @@
 #include "analysis_cache.h"
 #include "example_set_impl.h"
 #include "gradient_operator.h"
+#include "heap_release.h"
 #include "input_validation.h"
 #include "locality_order.h"
 #include "meshik/thread_limit.h"
@@ -152,6 +153,9 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   else if (!cached)
     analyze();
   if (!cached) cache_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
+  // The temporaries above (the examples' copies, the adjacency, the frames' released parts, the
+  // analysis thread's work arrays) leave holes in the heaps: give them back before the Solver.
+  release_free_heap_memory();
   clock.lap(cached ? "analysis (cached)" : "analysis");  // with more than one thread: the wait for it
 }
 

@@ -69,7 +69,8 @@ std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const 
   // Per triangle and coordinate the energy is |sum_q x_q g_q - target|^2: add the Gram of g.
   for (int j = 0; j < frames.num_triangles; ++j) {
     const int* t = triangles + 3 * j;
-    const double* g = frames.gradient.data() + 6 * static_cast<size_t>(j);
+    double g[6];
+    corner_gradients(frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
     for (int p = 0; p < 3; ++p) {
       const int col = row_of_vertex[t[p]];
       const auto begin = pattern.row_index.begin() + pattern.col_start[col];

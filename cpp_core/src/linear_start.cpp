@@ -12,7 +12,8 @@
 
 namespace meshik {
 
-LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, int team) {
+LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, EvaluationBuffers& buffers,
+                         int team) {
   const int k = set.num_examples;
   const int num_handles = static_cast<int>(system.handles().size());
   schur_ = Eigen::MatrixXd::Zero(k, k);
@@ -23,7 +24,6 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, 
   // All handles at the origin: the Gauss-Newton system gives S and g_U, then Z = K'^{-1} G'^T L
   // on the unknowns coupled to a handle (the backward solve along their tree paths only).
   const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
-  EvaluationBuffers buffers;
   PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers, team);
   PoseEvaluation at_rest;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
@@ -43,7 +43,8 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, 
   // The features' stored values (float or double) are widened before they are multiplied.
   visit_feature_values(set.features, [&](const auto& values) {
     for (int j : system.handle_triangles()) {
-      const double* g = set.frames.gradient.data() + 6 * static_cast<size_t>(j);
+      double g[6];
+      corner_gradients(set.frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
       for (int q = 0; q < 3; ++q) {
         const int h = system.handle_of_vertex()[set.triangles[3 * j + q]];
         if (h < 0) continue;

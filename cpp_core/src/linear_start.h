@@ -19,12 +19,15 @@
 
 namespace meshik {
 
+struct EvaluationBuffers;
+
 class LinearStart {
  public:
   // set / system: the example set and its factored handle system. One Gauss-Newton system (the
   // forward solve of 3 (#E + 1) right-hand sides) and the backward solve on the handles' tree
-  // paths. team: threads of those passes (a thread_count; the same bits for any team).
-  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, int team = 1);
+  // paths. team: threads of those passes (a thread_count; the same bits for any team). buffers:
+  // the evaluation's storage, left sized (and its pages touched) for the poses that reuse it.
+  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, EvaluationBuffers& buffers, int team = 1);
 
   // targets: #H by 3 handle positions; regularization: kappa >= 0. Returns #E weights.
   Eigen::VectorXd weights(const double* targets, double regularization) const;

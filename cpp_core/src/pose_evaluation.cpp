@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "feature_space.h"
+#include "huge_pages.h"
 #include "region_outer_products.h"
 #include "simd_clones.h"
 
@@ -102,7 +103,8 @@ MESHIK_LANE_INLINE void transpose_rows(LaneRow (&r)[L]) {
 // stride: a multiple of kLanes; source: `stride` entries, for each column of rhs the row of out
 // holding its first column (the next row holds the second), or -1 for a padding column (see
 // column_sources); lanes: triangles in the batch; rows (lanes by 3): the row of rhs each corner
-// adds to (AssemblyPartition::corner_row, -1 for none); gradient (lanes by 6): the batch's.
+// adds to (AssemblyPartition::corner_row, -1 for none); gradient (lanes by kGradientEntries): the
+// batch's.
 // Eight columns at a time, the batch's rows are transposed in registers, so that each triangle's
 // values are one vector per column block.
 MESHIK_SIMD_CLONES
@@ -120,15 +122,17 @@ void scatter_batch(const double* out, const int* source, int stride, int lanes, 
     }
     transpose_rows(first);
     transpose_rows(second);
-    for (int l = 0; l < lanes; ++l)
+    for (int l = 0; l < lanes; ++l) {
+      double g[6];
+      corner_gradients(gradient + kGradientEntries * l, g);
       for (int q = 0; q < 3; ++q) {
         const int u = rows[3 * l + q];
         if (u < 0) continue;
         double* row = rhs + static_cast<size_t>(u) * stride + block;
-        const double* g = gradient + 6 * l + 2 * q;
-        const LaneRow sum = load_row(row) + g[0] * first[l] + g[1] * second[l];
+        const LaneRow sum = load_row(row) + g[2 * q] * first[l] + g[2 * q + 1] * second[l];
         std::memcpy(row, &sum, sizeof sum);
       }
+    }
   }
 }
 
@@ -142,7 +146,8 @@ double batch_residual(const double* vertices, const int* triangles, const double
                       int lanes, double* terms, unsigned* inverted) {
   double posed[6][L] = {};  // Q_j, rows as in terms
   for (int l = 0; l < lanes; ++l) {
-    const double* g = gradient + 6 * l;
+    double g[6];
+    corner_gradients(gradient + kGradientEntries * l, g);
     const double* x0 = vertices + 3 * static_cast<size_t>(triangles[3 * l]);
     const double* x1 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 1]);
     const double* x2 = vertices + 3 * static_cast<size_t>(triangles[3 * l + 2]);
@@ -230,7 +235,7 @@ std::vector<int> column_sources(int k, bool with_jacobian, int stride) {
 // The first 64-byte boundary in storage, after sizing storage to hold `count` doubles from there.
 double* aligned_start(std::vector<double>& storage, size_t count) {
   constexpr size_t kLineDoubles = 64 / sizeof(double);
-  storage.resize(count + kLineDoubles);
+  size_work_on_huge_pages(storage, count + kLineDoubles);
   const size_t misalignment = reinterpret_cast<uintptr_t>(storage.data()) / sizeof(double) % kLineDoubles;
   return storage.data() + (kLineDoubles - misalignment) % kLineDoubles;
 }
@@ -292,14 +297,15 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)));
-  residual_.resize(6 * L * static_cast<size_t>(features_.num_batches));
+  size_work_on_huge_pages(residual_, 6 * L * static_cast<size_t>(features_.num_batches));
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
   for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {
     const int j = system.handle_triangles()[slot];
     batch_has_handle_[j / L] = 1;
     const int* t = set.triangles.data() + 3 * j;
-    const double* g = set.frames.gradient.data() + 6 * static_cast<size_t>(j);
+    double g[6];
+    corner_gradients(set.frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
     double* offset = handle_offset_.data() + 6 * slot;
     for (int q = 0; q < 3; ++q) {
       const int h = handle_of_vertex[t[q]];
@@ -411,7 +417,7 @@ void PoseEvaluator::assemble_chunk(const double* weights, bool with_jacobian, co
       }
     }
     scatter_batch(block, block_source, stride_, lanes, corner_row + 3 * static_cast<size_t>(first),
-                  set_.frames.gradient.data() + 6 * static_cast<size_t>(first), rhs_);
+                  set_.frames.gradient.data() + kGradientEntries * static_cast<size_t>(first), rhs_);
   }
 }
 
@@ -519,7 +525,7 @@ void PoseEvaluator::residual_chunk(const double* vertices, int chunk) {
     const int first = batch * L;
     unsigned mask = 0;
     energy += batch_residual(vertices, set_.triangles.data() + 3 * static_cast<size_t>(first),
-                             set_.frames.gradient.data() + 6 * static_cast<size_t>(first),
+                             set_.frames.gradient.data() + kGradientEntries * static_cast<size_t>(first),
                              std::min(L, set_.num_triangles - first),
                              residual_.data() + static_cast<size_t>(batch) * 6 * L, &mask);
     for (int l = 0; mask != 0; ++l, mask >>= 1)

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "example_set_impl.h"
+#include "heap_release.h"
 
 namespace meshik {
 
@@ -83,6 +84,9 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   }
   number_rows_in_factor_order();
   partition_ = assembly_partition(set.triangles, unknown_of_vertex_, num_rows_);
+  // The factorization's work arrays (the values' copies, the update stacks) are freed: their
+  // pages go back before the linear start's and the poses' buffers are allocated.
+  release_free_heap_memory();
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
 }
 

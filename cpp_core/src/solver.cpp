@@ -77,7 +77,10 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->options = options;
   const int team = thread_count(options.threads);
   impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
-  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, team);
+  // The linear start's buffers are the first poses' (the pool's first entry): sized and touched.
+  auto buffers = std::make_unique<EvaluationBuffers>();
+  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, *buffers, team);
+  impl_->pool.push_back(std::move(buffers));
   if (options.blend == Blend::kFree) impl_->free_features = std::make_unique<ExampleFeatures>(with_rest_example(set.features));
   if (!options.vertex_regions.empty())
     impl_->regions = std::make_unique<BlendRegions>(

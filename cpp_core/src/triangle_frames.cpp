@@ -43,7 +43,7 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
   constexpr int N = kGradientLanes;
   double e1[3][N], e2[3][N];
   edge_lanes(rest, triangles, first, count, e1, e2);
-  double inverse[9][N], basis[6][N], gradient[6][N];
+  double inverse[9][N], basis[6][N], gradient[kGradientEntries][N];
   for (int l = 0; l < N; ++l) {
     // n = e1 x e2; the fourth vertex's offset f = n / sqrt|n| (fourth_vertex_offset).
     const double n0 = e1[1][l] * e2[2][l] - e1[2][l] * e2[1][l];
@@ -79,18 +79,15 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
     const double q = e2[0][l] * u1[0] + e2[1][l] * u1[1] + e2[2][l] * u1[2];
     const double s = e2[0][l] * u2[0] + e2[1][l] * u2[1] + e2[2][l] * u2[2];
     const double inverse_ps = 1.0 / (p * s);
-    gradient[2][l] = s * inverse_ps;
-    gradient[3][l] = -q * inverse_ps;
-    gradient[4][l] = 0.0;
-    gradient[5][l] = p * inverse_ps;
-    gradient[0][l] = -(gradient[2][l] + gradient[4][l]);
-    gradient[1][l] = -(gradient[3][l] + gradient[5][l]);
+    gradient[0][l] = s * inverse_ps;
+    gradient[1][l] = -q * inverse_ps;
+    gradient[2][l] = p * inverse_ps;
   }
   for (int l = 0; l < count; ++l) {
     const size_t j = static_cast<size_t>(first + l);
     for (int e = 0; e < 9; ++e) frames.frame_inverse[9 * j + e] = inverse[e][l];
     for (int e = 0; e < 6; ++e) frames.plane_basis[6 * j + e] = basis[e][l];
-    for (int e = 0; e < 6; ++e) frames.gradient[6 * j + e] = gradient[e][l];
+    for (int e = 0; e < kGradientEntries; ++e) frames.gradient[kGradientEntries * j + e] = gradient[e][l];
   }
 }
 
@@ -99,7 +96,7 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
 TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles, int team) {
   TriangleFrames frames;
   frames.num_triangles = num_triangles;
-  assign_on_huge_pages(frames.gradient, 6 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0);
   assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0);
   assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0);
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;

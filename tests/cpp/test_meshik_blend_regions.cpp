@@ -63,11 +63,13 @@ TEST_P(BlendModes, UnitWeightsGiveTheExample) {
       meshik::blend_batch(impl().features, GetParam().space, w.data(), batch, out.data(), GetParam().blend);
       for (int l = 0; l < kLanes && batch * kLanes + l < impl().num_triangles; ++l) {
         const int j = batch * kLanes + l;
+        double g[6];
+        meshik::corner_gradients(impl().frames.gradient.data() + meshik::kGradientEntries * j, g);
         for (int c = 0; c < 3; ++c)
           for (int d = 0; d < 2; ++d) {
             double q = 0.0;
             for (int corner = 0; corner < 3; ++corner)
-              q += pose[3 * impl().triangles[3 * j + corner] + c] * impl().frames.gradient[6 * j + 2 * corner + d];
+              q += pose[3 * impl().triangles[3 * j + corner] + c] * g[2 * corner + d];
             EXPECT_NEAR(out[(2 * c + d) * kLanes + l], q, 1e-11) << "example " << i << " triangle " << j;
           }
       }

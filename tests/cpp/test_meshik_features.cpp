@@ -34,10 +34,11 @@ std::vector<double> blend_of(const meshik::ExampleFeatures& features, FeatureSpa
 // The in-plane gradient Q_j(x) (3 by 2 row-major) of positions x (internal order).
 std::vector<double> in_plane_gradient(const meshik::ExampleSet::Impl& set, const double* x, int j) {
   std::vector<double> q(6, 0.0);
+  double g[6];
+  meshik::corner_gradients(set.frames.gradient.data() + meshik::kGradientEntries * j, g);
   for (int c = 0; c < 3; ++c)
     for (int corner = 0; corner < 3; ++corner)
-      for (int d = 0; d < 2; ++d)
-        q[2 * c + d] += x[3 * set.triangles[3 * j + corner] + c] * set.frames.gradient[6 * j + 2 * corner + d];
+      for (int d = 0; d < 2; ++d) q[2 * c + d] += x[3 * set.triangles[3 * j + corner] + c] * g[2 * corner + d];
   return q;
 }
 

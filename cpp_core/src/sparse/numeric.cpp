@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "huge_pages.h"
 #include "meshik/sparse_cholesky.h"
 #include "sparse/dense_kernels.h"
 #include "sparse/simplicial_prefix.h"
@@ -256,7 +257,8 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
                           const std::vector<int>& original_column, std::vector<double>& values,
                           const SubtreeSchedule* schedule, int team) {
   const int ns = f.num_supernodes();
-  values.resize(f.value_start[ns]);
+  // Every block is filled before it is read (assemble_block): new storage goes on huge pages.
+  if (values.size() != f.value_start[ns]) assign_on_huge_pages(values, f.value_start[ns], 0.0);
   int failed = -1;
   if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
     Multifrontal mf(f, lower, lower_values, values, team + 1);
