@@ -71,7 +71,7 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->handles = handles;
   impl_->options = options;
   const int team = thread_count(options.threads);
-  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
+  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team, options.handle_stiffness);
   impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, team);
   if (!options.vertex_regions.empty())
     impl_->regions = std::make_unique<BlendRegions>(
