@@ -112,6 +112,15 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   region_smoothness_->setValue(0.01);
   region_smoothness_->setToolTip(tr("How strongly neighbouring regions' weights are pulled together"));
   form->addRow(tr("Region smoothness"), region_smoothness_);
+  handle_stiffness_ = new QDoubleSpinBox(this);
+  handle_stiffness_->setRange(0.0, 1e6);
+  handle_stiffness_->setDecimals(4);
+  handle_stiffness_->setSingleStep(0.1);
+  handle_stiffness_->setSpecialValueText(tr("Hard"));
+  handle_stiffness_->setToolTip(tr("Hard: each handle exactly at its target. A stiffness > 0 makes the handles soft: "
+                                   "a target out of the examples' reach bends the region instead of pulling one "
+                                   "vertex into a spike (small: loose, large: nearly hard)"));
+  form->addRow(tr("Handle stiffness"), handle_stiffness_);
   mirror_ = new QComboBox(this);
   mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)")});
   mirror_->setToolTip(tr("New handles get a partner at the vertex nearest their mirror image (within 1% of the "
@@ -123,6 +132,7 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   connect(blend_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
   connect(regions_, &QSpinBox::editingFinished, this, &DragDock::optionsChanged);
   connect(region_smoothness_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
+  connect(handle_stiffness_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
 
   handles_ = fixedLabel(this, 1);
   keyframes_ = fixedLabel(this, 1);
@@ -185,6 +195,7 @@ bool DragDock::freeBlend() const { return blend_->currentIndex() == 1; }
 int DragDock::regionCount() const { return regions_->value() == 0 ? kAutomaticRegions : regions_->value(); }
 
 double DragDock::regionSmoothness() const { return region_smoothness_->value(); }
+double DragDock::handleStiffness() const { return handle_stiffness_->value(); }
 
 void DragDock::showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles) {
   QStringList past;

@@ -42,6 +42,8 @@ class DragDock : public QWidget {
   // The "Regions" option: a count >= 1 (1: one weight vector), or meshik::kAutomaticRegions.
   int regionCount() const;
   double regionSmoothness() const;
+  // The "Handle stiffness" option: 0 for hard handles, > 0 for soft ones (SolverOptions).
+  double handleStiffness() const;
 
   // The readout of a finished pose: #E weights, Gauss-Newton iterations, solve time, inverted faces.
   void showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles);
@@ -70,6 +72,7 @@ class DragDock : public QWidget {
   QComboBox* blend_;
   QSpinBox* regions_;
   QDoubleSpinBox* region_smoothness_;
+  QDoubleSpinBox* handle_stiffness_;
   std::vector<QProgressBar*> weight_bars_;  // a fixed number, hidden when unused
   std::vector<QString> weight_names_;
   QLabel* extrapolation_;

@@ -203,6 +203,7 @@ void DragTool::restartWorker() {
   options.blend = panel_->freeBlend() ? Blend::kFree : Blend::kAffine;
   options.regions = panel_->regionCount();
   options.region_smoothness = panel_->regionSmoothness();
+  options.handle_stiffness = panel_->handleStiffness();
   worker_ = std::make_unique<SolveWorker>(
       example_set_, options, [this] { QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection); },
       triangles_);
