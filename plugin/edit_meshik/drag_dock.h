@@ -34,7 +34,11 @@ class DragDock : public QWidget {
   bool linearFeatureSpace() const;
   // The "Mirror" option: -1 off, else the axis (0, 1, 2) normal to the mirror plane.
   int mirrorAxis() const;
-  // Steps the "Mirror" option to the next choice (off, X, Y, Z, off, ...); returns its text.
+  // Whether the mirror plane goes through a vertex the user picks (else through the rest mesh's
+  // centre).
+  bool mirrorThroughPickedVertex() const;
+  // Steps the "Mirror" option to the next choice (off, X, Y, Z through the centre, X, Y, Z through
+  // a picked vertex, off, ...); returns its text.
   QString cycleMirror();
   double weightRegularization() const;
   // The "Stretch blend" option: true for the paper's free weights, false for the affine space.
@@ -56,6 +60,7 @@ class DragDock : public QWidget {
  signals:
   void examplesChanged();
   void optionsChanged();
+  void mirrorChanged();
   void resetPose();
   void clearHandles();
   void addKeyframe();

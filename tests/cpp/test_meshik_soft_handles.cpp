@@ -17,13 +17,9 @@ using meshik::SolverOptions;
 class SoftHandles : public ::testing::Test {
  protected:
   void SetUp() override {
-    meshes_ = meshik_test::make_tube_examples();
-    set_ = std::make_shared<ExampleSet>(meshes_.view(), meshes_.example_pointers());
-    handles_ = meshik_test::farthest_point_handles(meshes_.rest, 8);
-    diagonal_ = meshik_test::bounding_box_diagonal(meshes_.rest);
     // Example 0's handle positions, the first handle pulled 0.3 diagonals out of reach sideways.
-    targets_ = meshik_test::gather_rows(meshes_.examples[0], handles_);
-    pull_ = 0.3 * diagonal_;
+    targets_ = meshik_test::gather_rows(tube_.meshes.examples[0], tube_.handles);
+    pull_ = 0.3 * tube_.diagonal;
     targets_[0] += pull_;
   }
   SolveResult solve(double stiffness, const std::vector<double>& targets) const {
@@ -43,11 +39,13 @@ class SoftHandles : public ::testing::Test {
       for (int c = 0; c < 3; ++c) moved[3 * v + c] -= mean[c];
     return meshik_test::max_vertex_distance(moved, example);
   }
-  meshik_test::ExampleMeshes meshes_;
-  std::shared_ptr<ExampleSet> set_;
-  std::vector<int> handles_;
+  const meshik_test::TubeProblem tube_ = meshik_test::make_tube_problem();
+  const meshik_test::ExampleMeshes& meshes_ = tube_.meshes;
+  const std::shared_ptr<ExampleSet>& set_ = tube_.set;
+  const std::vector<int>& handles_ = tube_.handles;
+  const double diagonal_ = tube_.diagonal;
   std::vector<double> targets_;
-  double diagonal_ = 0.0, pull_ = 0.0;
+  double pull_ = 0.0;
 };
 
 TEST_F(SoftHandles, ZeroStiffnessIsTheHardSolveBitForBit) {
