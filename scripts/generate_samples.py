@@ -10,6 +10,9 @@ Each set is a folder with the rest mesh `rest.obj`, example poses `example_1.obj
         waves of different phase and amplitude (the paper's "Flag" row).
   limb  1,240 vertices, 2,476 triangles, 4 examples: an arm (upper arm, forearm, hand) skinned
         on three bones, with the elbow bent, the shoulder raised, the wrist bent and both.
+  wings 656 vertices, 1,308 triangles, 4 examples: a body with two wings along x, exactly
+        symmetric about the plane x = 0 (vertices, triangles and every example), the wings raised,
+        lowered, swept forward and both (for the Drag to Pose tool's Mirror check).
 
 Usage: python scripts/generate_samples.py [--out sample_meshes]
 """
@@ -155,6 +158,63 @@ def skin_arm(rest: np.ndarray, shoulder_deg: float, elbow_deg: float, wrist_deg:
     return sum(w[:, [i]] * bones[i] for i in range(3))
 
 
+def symmetric_tube(rings: int, sides: int, half_length: float, radius_of) -> tuple:
+    """A closed tube along x from -half_length to half_length, exactly symmetric about x = 0:
+    `rings` (odd) rings of `sides` vertices, radius radius_of(|x|), ring r the mirror image of ring
+    rings-1-r (x negated exactly), and the quads of the half x > 0 split along the mirror images of
+    the other half's diagonals; caps fanned from each end ring's first vertex.
+    Returns (#V by 3 vertices, #F by 3 faces), #V = rings*sides, #F = 2*sides*(rings-1) + 2*(sides-2)."""
+    last_ring = rings - 1
+    vertices = []
+    for r in range(rings):
+        x = half_length * (2 * r - last_ring) / last_ring
+        rad = radius_of(abs(x))
+        for s in range(sides):
+            a = 2 * math.pi * s / sides
+            vertices.append((x, rad * math.cos(a), rad * math.sin(a)))
+    faces = []
+    for r in range(last_ring):
+        for s in range(sides):
+            a, b = r * sides + s, r * sides + (s + 1) % sides
+            c, d = a + sides, b + sides
+            faces += [(a, b, d), (a, d, c)] if 2 * r < last_ring else [(a, b, c), (b, d, c)]
+    last = last_ring * sides
+    for s in range(1, sides - 1):
+        faces.append((0, s + 1, s))
+        faces.append((last, last + s, last + s + 1))
+    return np.array(vertices), np.array(faces, dtype=np.int64)
+
+
+def pose_wings(rest: np.ndarray, raise_deg: float, sweep_deg: float) -> np.ndarray:
+    """Both wings turned about their shoulder (x = +-0.6): raised by raise_deg (tips up, +y) and
+    swept forward by sweep_deg (tips towards +z), blended smoothly from the body; the left wing is
+    the exact mirror image of the right one."""
+    shoulder = np.array([0.6, 0.0, 0.0])
+    turn = rotation([0, 0, 1], raise_deg) @ rotation([0, 1, 0], -sweep_deg)
+    mirror = np.array([-1.0, 1.0, 1.0])
+    side = np.abs(rest) * [1, 0, 0] + rest * [0, 1, 1]  # every vertex as if on the right wing
+    weight = smoothstep((side[:, 0] - 0.3) / 0.6)[:, None]
+    posed = (1 - weight) * side + weight * ((side - shoulder) @ turn.T + shoulder)
+    return np.where(rest[:, [0]] < 0, posed * mirror, posed)
+
+
+def make_wings() -> dict:
+    """A body (radius 0.45) with two wings (radius 0.2) along x, 41 rings of 16 vertices."""
+    rest, faces = symmetric_tube(41, 16, 2.5, lambda x: 0.2 + 0.25 * math.exp(-(x / 0.5) ** 2))
+    examples = [pose_wings(rest, *p) for p in [(50, 0), (-40, 0), (0, 45), (30, 30)]]
+    frames = []
+    for i in range(12):
+        flap = 40.0 * math.sin(2 * math.pi * i / 12)
+        frames.append({"name": f"{i:04d}", "targets": {
+            "left": {"rotate": {"axis": [0, 0, 1], "degrees": -flap, "center": [-0.6, 0.0, 0.0]}},
+            "right": {"rotate": {"axis": [0, 0, 1], "degrees": flap, "center": [0.6, 0.0, 0.0]}}}})
+    return {"rest": rest, "faces": faces, "examples": examples,
+            "handles": {"body": {"near": [0.0, 0.0, 0.0], "radius": 0.46},
+                        "left": {"near": [-2.5, 0.0, 0.0], "radius": 0.25},
+                        "right": {"near": [2.5, 0.0, 0.0], "radius": 0.25}},
+            "frames": frames}
+
+
 def make_limb() -> dict:
     """An arm: 62 rings of 20 vertices (1,240), bulging at the biceps and forearm, flat hand."""
     length = 4.2
@@ -208,6 +268,7 @@ def main() -> None:
     write_set(out, "bar", make_bar())
     write_set(out, "flag", make_flag())
     write_set(out, "limb", make_limb())
+    write_set(out, "wings", make_wings())
 
 
 if __name__ == "__main__":

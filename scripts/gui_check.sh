@@ -16,8 +16,8 @@
 # handles and targets (scripts/gui_check_drag.py), MeshLab answers the Edit menu afterwards, no
 # error dialog or warning. The drag latency (mouse-move event to updated GL buffers, median and
 # max, solve and overhead medians) is printed. On the sample, scripts/gui_check_artist.sh then drives
-# handle groups, undo/redo, Esc, rotation, keyframes and mirroring (see there), with screenshots
-# named *_group, *_undo, *_rotate, *_keyframes, *_mirror. Screenshots for a person to look at go to
+# handle groups, undo/redo, Esc, rotation and keyframes, and on the symmetric sample wings the
+# mirror (see there), with screenshots named *_group, *_undo, *_rotate, *_keyframes, *_mirror. Screenshots for a person to look at go to
 # gui_check_output/<precision>/.
 #
 # Usage: scripts/gui_check.sh [float|double]
@@ -371,13 +371,16 @@ drive_drag_tool() {
   "$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" check "$constraints_out" "$pose_out" "$weights" \
     >"$out/${name}_check.txt" 2>&1 || { cat "$out/${name}_check.txt" >&2; fail "$name: the saved pose is wrong"; }
   step "$name: $(tail -n 1 "$out/${name}_check.txt")"
-  step "$name: $moves moves, $solves solves ($coalesced coalesced, $superseded superseded); latency (mouse move to updated GL buffers) $(sed -E 's/.*latency //' <<<"$summary") (overhead: waiting for the GUI thread plus writing the layer and GL buffers)"
+  step "$name: $moves moves, $solves solves ($coalesced coalesced, $superseded superseded); latency (mouse move to updated GL buffers) $(sed -E 's/.*latency //' <<<"$summary")"
   stop_meshlab
 }
 
 drive_drag_tool "$sample" "$project"
 source "$root/scripts/gui_check_artist.sh"
 drive_artist_features "${sample}_artist" "$project"
+wings=$root/sample_meshes/wings  # exactly symmetric about x = 0
+write_project "$out/wings.mlp" "$wings/rest.obj" "$wings"/example_*.obj
+drive_mirror_check wings_mirror "$out/wings.mlp"
 shared_data=${MESHIK_SHARED_DATA:-$root/../shared/data}
 for set in horse elephant; do  # the rest pose and 4 examples of each real set
   if [[ -f $shared_data/$set-poses/reference.obj ]]; then

@@ -6,8 +6,9 @@
 #   tool's pose in meshik.Solver (within 1e-6 of the diagonal);
 #   two keyframes (F) posed by `meshik pose` equal the tool's poses frame by frame;
 #   Esc during a drag puts the pose back exactly (and leaves the tool running);
-#   with Mirror Z (key M three times), a dragged handle and its partner give a pose symmetric about
-#   the plane z = centre within 1e-6 of the diagonal (the sample's examples are symmetric).
+#   on the wings (drive_mirror_check): with Mirror X, a handle on the plane, a wing's group and its
+#   mirrored group, dragged and turned, give a pose symmetric about x = 0 within 1e-6 of the
+#   diagonal; the plane through a picked vertex goes through the clicked vertex.
 
 # Saves the posed layer through the tool's dialog (key P) to $1; prints the logged weights.
 artist_save_pose() {
@@ -157,23 +158,60 @@ drive_artist_features() {
   step "$artist: keyframes: $(tail -n 1 "$out/${artist}_frames_check.txt")"
   ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
   stop_meshlab
+}
 
-  # Mirror Z: one handle, its partner found across the plane z = centre, one drag.
-  artist="${1}_mirror"
+# On the wings sample (exactly symmetric about x = 0; its project $2): Mirror X through the centre,
+# a fixed handle on the plane, a group of two handles near one wing tip (click, ctrl+click) whose
+# partners form one mirrored group, a drag and a typed turn of that group; the pose is symmetric
+# about x = 0 within 1e-6 of the diagonal. Then the plane through a picked vertex: the next click
+# places it through that vertex (logged: x = 0 on the body).
+drive_mirror_check() {
+  artist=$1
+  local check=("$root/.venv/bin/python" "$root/scripts/gui_check_drag.py") line x y px py dx
+  step "$artist: mirror (the tool in MeshLab, on the symmetric wings)"
   artist_start "$2"
-  artist_keys "MeshIK drag: mirror: Z" m m m >/dev/null
-  line=$(artist_click $(sed -n 3p <<<"$artist_points") "" 1) || fail "$artist: clicking added no handle"
-  wait_log "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the Z plane" 5 >/dev/null ||
-    fail "$artist: no mirror partner (see $meshlab_log)"
+  artist_keys "MeshIK drag: mirror: X \\(plane x = centre\\)" m >/dev/null
+  artist_click $(sed -n 2p <<<"$artist_points") "" 1 >/dev/null || fail "$artist: clicking the body added no handle"
+  wait_log "MeshIK drag: vertex [0-9]+ lies on the X plane: its own mirror" 5 >/dev/null ||
+    fail "$artist: the handle on the plane is not its own mirror (see $meshlab_log)"
+  line=$(artist_click $(sed -n 1p <<<"$artist_points") "" 2) || fail "$artist: clicking the wing added no handle"
   read -r x y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
-  artist_drag "$x" "$y" 12 -6 -6 release
-  wait_log "MeshIK drag: drag group 1 " 30 >/dev/null || fail "$artist: the drag was not recorded"
+  wait_log "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the X plane \\(group 3\\)" 5 >/dev/null ||
+    fail "$artist: no mirror partner for the wing handle (see $meshlab_log)"
+  read -r px py <<<"$(sed -n 1p <<<"$artist_points")"
+  for dx in 30 40 50 -30; do
+    artist_click $((px + dx)) "$py" ctrl 4 >/dev/null && break
+  done
+  sleep 0.5
+  (($(grep -cE "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the X plane \\(group 3\\)" "$meshlab_log") == 2)) &&
+    grep -qE "MeshIK drag: 4 handles, .*\\(group 2\\)" "$meshlab_log" ||
+    fail "$artist: ctrl+click did not grow the wing's group and its mirrored group (see $meshlab_log)"
+  shot "${artist}_handles"
+  artist_drag "$x" "$y" 12 2 -5 release
+  wait_log "MeshIK drag: drag group 2 " 30 >/dev/null || fail "$artist: the drag was not recorded"
+  artist_cursor="$x $((y - 60))"
+  artist_keys "MeshIK drag: turning group 2" r >/dev/null
+  artist_cursor=
+  xdotool key 2 5
+  sleep 0.5
+  artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
   sleep 0.5
   shot "$artist"
   artist_save_pose "$out/${artist}.ply" >/dev/null
-  "${check[@]}" symmetric "$out/${artist}.ply" 2 >"$out/${artist}_check.txt" 2>&1 ||
+  "${check[@]}" symmetric "$out/${artist}.ply" 0 >"$out/${artist}_check.txt" 2>&1 ||
     { cat "$out/${artist}_check.txt" >&2; fail "$artist: the mirrored pose is not symmetric"; }
   step "$artist: $(tail -n 1 "$out/${artist}_check.txt")"
+
+  # The plane through a picked vertex (M three more times: X through a picked vertex): the click on
+  # the body places it (x = 0 there), the next click on a wing gets its partner across it.
+  artist_keys "MeshIK drag: mirror: X \\(plane through a picked vertex\\)" m m m >/dev/null
+  read -r px py <<<"$(sed -n 2p <<<"$artist_points")"
+  xdotool mousemove "$px" $((py + 25)) click 1  # beside the body's handle, on the plane x = 0
+  line=$(wait_log "MeshIK drag: mirror plane x = .*, through vertex [0-9]+" 5) ||
+    fail "$artist: the click did not place the mirror plane (see $meshlab_log)"
+  "$root/.venv/bin/python" -c "import sys; sys.exit(abs(float(sys.argv[1])) > 1e-9)" \
+    "$(sed -E 's/.*mirror plane x = ([^,]*),.*/\1/' <<<"$line")" || fail "$artist: the picked plane is not x = 0: $line"
+  shot "${artist}_picked_plane"
   ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
   stop_meshlab
 }

@@ -127,6 +127,9 @@ void validate_options(const SolverOptions& options) {
     throw InputError("regions must be a count >= 1 or automatic, got " + std::to_string(options.regions));
   if (!(std::isfinite(options.region_smoothness) && options.region_smoothness >= 0.0))
     throw InputError("region_smoothness must be finite and >= 0, got " + std::to_string(options.region_smoothness));
+  if (!(std::isfinite(options.handle_stiffness) && options.handle_stiffness >= 0.0))
+    throw InputError("handle_stiffness must be finite and >= 0 (0: hard handles), got " +
+                     std::to_string(options.handle_stiffness));
 }
 
 void validate_finite(const double* values, int count, const char* what) {

@@ -716,6 +716,7 @@ void PoseEvaluator::evaluate(const double* weights, bool with_jacobian, PoseEval
   const Eigen::Map<const Eigen::VectorXd> w(weights, num_weights_);
   out.energy =
       pose_and_residual(out.vertices.data(), out.inverted_triangles) + regularization_ * w.squaredNorm();
+  out.energy += system_.soft_handle_energy(out.vertices.data(), targets_);
   if (regions_ != nullptr && regions_->num_regions > 1) out.energy += region_smoothness_energy(weights, nullptr);
   out.has_second_order = false;
   out.evaluation = ++evaluations_;

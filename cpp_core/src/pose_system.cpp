@@ -7,6 +7,7 @@
 
 #include "example_set_impl.h"
 #include "heap_release.h"
+#include "soft_handles.h"
 
 namespace meshik {
 
@@ -45,7 +46,7 @@ std::vector<int> take_out_handles(const CscMatrix& lower, std::vector<double>& v
 }  // namespace
 
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-                       const ProgressCallback& progress, int team)
+                       const ProgressCallback& progress, int team, double handle_stiffness)
     : handles_(handles) {
   const int n = set.num_vertices;
   handle_of_vertex_.assign(n, -1);
@@ -58,9 +59,17 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
   for (size_t h = 0; h < handles.size(); ++h)
     if (unknown_of_vertex_[handles[h]] >= 0) handle_of_row[unknown_of_vertex_[handles[h]]] = static_cast<int>(h);
   std::vector<double> values = set.system_values;
-  coupling_start_ = take_out_handles(lower, values, handle_of_row, static_cast<int>(handles.size()), coupling_row_,
-                                     coupling_value_);
-  for (int v : handles) unknown_of_vertex_[v] = -1;
+  if (handle_stiffness > 0.0) {
+    coupling_start_ = pull_handles_softly(lower, values, handle_of_row, static_cast<int>(handles.size()),
+                                          handle_stiffness, coupling_row_, coupling_value_, soft_pull_);
+    // Only a handle used by no triangle (no row) stays fixed at its target.
+    for (int v : handles)
+      if (unknown_of_vertex_[v] >= 0) handle_of_vertex_[v] = -1;
+  } else {
+    coupling_start_ = take_out_handles(lower, values, handle_of_row, static_cast<int>(handles.size()),
+                                       coupling_row_, coupling_value_);
+    for (int v : handles) unknown_of_vertex_[v] = -1;
+  }
 
   handle_triangle_slot_.assign(set.num_triangles, -1);
   for (int j = 0; j < set.num_triangles; ++j) {
@@ -98,6 +107,10 @@ void PoseSystem::number_rows_in_factor_order() {
   for (int& u : unknown_of_vertex_)
     if (u >= 0) u = row_of_unknown[u];
   for (int& u : coupling_row_) u = row_of_unknown[u];
+}
+
+double PoseSystem::soft_handle_energy(const double* vertices, const double* targets) const {
+  return meshik::soft_handle_energy(vertices, handles_, targets, soft_pull_);
 }
 
 void PoseSystem::subtract_handle_coupling(const double* targets, double* rows, int stride) const {

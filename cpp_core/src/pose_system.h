@@ -22,9 +22,11 @@ class PoseSystem {
  public:
   // set: the validated example set; handles: validated distinct vertex indices (every component
   // of the triangles holds one); team: threads of the factorization (a thread_count; the same
-  // bits for any team). Assembles K' and factors it on the set's analysis.
+  // bits for any team); handle_stiffness: 0 for hard handles, > 0 for soft ones (soft_handles.h:
+  // the handles keep their rows, K' gains their pull, and the coupling is that pull).
+  // Assembles K' and factors it on the set's analysis.
   PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-             const ProgressCallback& progress = {}, int team = 1);
+             const ProgressCallback& progress = {}, int team = 1, double handle_stiffness = 0.0);
 
   // #V: the row of each free vertex (an unknown of K'), or -1 for a handle or a vertex used by
   // no triangle.
@@ -32,8 +34,12 @@ class PoseSystem {
   // Rows of the factored system: the free vertices' and the handles' (whose are always zero).
   int num_rows() const { return num_rows_; }
   const std::vector<int>& handles() const { return handles_; }
-  // #V: the index in handles() of each vertex, or -1.
+  // #V: the index in handles() of each vertex fixed at its target (every handle when hard; with
+  // soft handles only those used by no triangle), or -1.
   const std::vector<int>& handle_of_vertex() const { return handle_of_vertex_; }
+  // The soft handles' penalty sum_h sigma_h |x_h - t_h|^2 for vertices (#V by 3) and targets
+  // (#H by 3); 0 with hard handles.
+  double soft_handle_energy(const double* vertices, const double* targets) const;
 
   // Triangles with at least one handle corner, and for each #F triangle its index in that list
   // (or -1).
@@ -88,6 +94,7 @@ class PoseSystem {
   std::vector<double> coupling_value_;
   std::vector<int> handle_triangles_;
   std::vector<int> handle_triangle_slot_;
+  std::vector<double> soft_pull_;  // #H: sigma_h of soft handles; empty when hard
   SparseCholesky factor_;
   AssemblyPartition partition_;
 };

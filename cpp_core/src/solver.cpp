@@ -76,7 +76,7 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->handles = handles;
   impl_->options = options;
   const int team = thread_count(options.threads);
-  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team);
+  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team, options.handle_stiffness);
   // The linear start's buffers are the first poses' (the pool's first entry): sized and touched.
   auto buffers = std::make_unique<EvaluationBuffers>();
   impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, *buffers, team);

@@ -256,12 +256,13 @@ PyExampleSet make_example_set(const nb::object& rest_vertices, const nb::object&
 }
 
 // Solver over `set` for handles (h,) with the given options (GIL released while factoring);
-// threads: None (all cores) or a count, for each solve (thread_option).
+// threads: None (all cores) or a count, for each solve (thread_option); handle_stiffness: 0 for
+// hard handles, > 0 for soft ones (SolverOptions::handle_stiffness).
 PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::object& handles,
                      const std::string& feature_space, double weight_regularization,
                      int max_iterations, double tolerance, const nb::object& progress,
                      const nb::object& threads, const std::string& blend, const nb::object& regions,
-                     double region_smoothness) {
+                     double region_smoothness, double handle_stiffness) {
   const nb::object handle_array = as_numpy(handles);
   check_shape(handle_array, "handles", {-1}, "(h,)");
   const std::vector<int> handle_values = int_values(handle_array, "handles");
@@ -274,6 +275,7 @@ PySolver make_solver(std::shared_ptr<const meshik::ExampleSet> set, const nb::ob
   options.blend = parse_blend(blend);
   parse_regions(regions, options);
   options.region_smoothness = region_smoothness;
+  options.handle_stiffness = handle_stiffness;
   PythonProgress python_progress(progress);
   auto solver = python_progress.run([&](const meshik::ProgressCallback& callback) {
     return std::make_unique<meshik::Solver>(set, handle_values, options, callback);
@@ -392,35 +394,38 @@ NB_MODULE(_core, m) {
               const std::string& feature_space, double weight_regularization, int max_iterations,
               double tolerance, const nb::object& progress, const nb::object& threads,
               const std::string& feature_precision, const std::string& blend, const nb::object& regions,
-              double region_smoothness) {
+              double region_smoothness, double handle_stiffness) {
              PyExampleSet set =
                  make_example_set(rest_vertices, faces, examples, progress, threads, feature_precision);
              new (self) PySolver(make_solver(std::move(set.core), handles, feature_space,
                                              weight_regularization, max_iterations, tolerance,
-                                             progress, threads, blend, regions, region_smoothness));
+                                             progress, threads, blend, regions, region_smoothness,
+                                             handle_stiffness));
            },
            "rest_vertices"_a, "faces"_a, "examples"_a, "handles"_a,
            "feature_space"_a = "nonlinear", "weight_regularization"_a = 0.0,
            "max_iterations"_a = 30, "tolerance"_a = 1e-10, "progress"_a = nb::none(),
            "threads"_a = nb::none(), "feature_precision"_a = "single", "blend"_a = "affine",
-           "regions"_a = 1, "region_smoothness"_a = 0.01,
+           "regions"_a = 1, "region_smoothness"_a = 0.01, "handle_stiffness"_a = 0.0,
            "blend: 'affine' (stretches tied to the rest, default) or 'free' (the paper's "
            "w_0 I + sum_i w_i S_i, the rest pose as example 0: k + 1 weights, the rest's first); regions: 1 (one weight vector), a count of regions clustered from the "
            "examples, 'auto', or (n,) vertex groups (-1: none); the weights are then (regions, k) "
-           "flattened region-major; region_smoothness: pull between neighbouring regions' weights.")
+           "flattened region-major; region_smoothness: pull between neighbouring regions' weights; "
+           "handle_stiffness: 0 (hard handles, each exactly at its target) or > 0 (soft: each handle "
+           "pulled towards its target with that stiffness, relative to how its triangles hold it).")
       .def_static(
           "from_example_set",
           [](const PyExampleSet& set, const nb::object& handles, const std::string& feature_space,
              double weight_regularization, int max_iterations, double tolerance,
              const nb::object& progress, const nb::object& threads, const std::string& blend,
-             const nb::object& regions, double region_smoothness) {
-            return make_solver(set.core, handles, feature_space, weight_regularization,
-                               max_iterations, tolerance, progress, threads, blend, regions, region_smoothness);
+             const nb::object& regions, double region_smoothness, double handle_stiffness) {
+            return make_solver(set.core, handles, feature_space, weight_regularization, max_iterations, tolerance,
+                               progress, threads, blend, regions, region_smoothness, handle_stiffness);
           },
           "example_set"_a, "handles"_a, "feature_space"_a = "nonlinear",
           "weight_regularization"_a = 0.0, "max_iterations"_a = 30, "tolerance"_a = 1e-10,
           "progress"_a = nb::none(), "threads"_a = nb::none(), "blend"_a = "affine", "regions"_a = 1,
-          "region_smoothness"_a = 0.01,
+          "region_smoothness"_a = 0.01, "handle_stiffness"_a = 0.0,
           "A solver sharing example_set's precomputed features. threads: of each solve (None: all "
           "cores; the pose is the same bits for any count).")
       .def("solve", &solve, "targets"_a, "initial_weights"_a = nb::none(),

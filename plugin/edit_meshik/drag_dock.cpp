@@ -112,10 +112,22 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   region_smoothness_->setValue(0.01);
   region_smoothness_->setToolTip(tr("How strongly neighbouring regions' weights are pulled together"));
   form->addRow(tr("Region smoothness"), region_smoothness_);
+  handle_stiffness_ = new QDoubleSpinBox(this);
+  handle_stiffness_->setRange(0.0, 1e6);
+  handle_stiffness_->setDecimals(4);
+  handle_stiffness_->setSingleStep(0.1);
+  handle_stiffness_->setSpecialValueText(tr("Hard"));
+  handle_stiffness_->setToolTip(tr("Hard: each handle exactly at its target. A stiffness > 0 makes the handles soft: "
+                                   "a target out of the examples' reach bends the region instead of pulling one "
+                                   "vertex into a spike (small: loose, large: nearly hard)"));
+  form->addRow(tr("Handle stiffness"), handle_stiffness_);
   mirror_ = new QComboBox(this);
-  mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)")});
+  mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)"),
+                     tr("X (plane through a picked vertex)"), tr("Y (plane through a picked vertex)"),
+                     tr("Z (plane through a picked vertex)")});
   mirror_->setToolTip(tr("New handles get a partner at the vertex nearest their mirror image (within 1% of the "
-                         "diagonal); moves and turns are mirrored"));
+                         "diagonal); moves and turns are mirrored. With a picked plane, the next click places "
+                         "the plane through the clicked vertex"));
   form->addRow(tr("Mirror"), mirror_);
   layout->addLayout(form);
   connect(feature_space_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
@@ -123,11 +135,13 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   connect(blend_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
   connect(regions_, &QSpinBox::editingFinished, this, &DragDock::optionsChanged);
   connect(region_smoothness_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
+  connect(handle_stiffness_, &QDoubleSpinBox::editingFinished, this, &DragDock::optionsChanged);
+  connect(mirror_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::mirrorChanged);
 
   handles_ = fixedLabel(this, 1);
   keyframes_ = fixedLabel(this, 1);
   solve_ = fixedLabel(this, 1);
-  latency_ = fixedLabel(this, 3);
+  latency_ = fixedLabel(this, 4);
   error_ = fixedLabel(this, 3);
   error_->setStyleSheet("color: #c00000");
   for (QLabel* label : {handles_, keyframes_, solve_, latency_, error_}) layout->addWidget(label);
@@ -171,7 +185,9 @@ void DragDock::setWeightNames(const std::vector<QString>& names) { weight_names_
 
 bool DragDock::linearFeatureSpace() const { return feature_space_->currentIndex() == 1; }
 
-int DragDock::mirrorAxis() const { return mirror_->currentIndex() - 1; }
+int DragDock::mirrorAxis() const { return mirror_->currentIndex() == 0 ? -1 : (mirror_->currentIndex() - 1) % 3; }
+
+bool DragDock::mirrorThroughPickedVertex() const { return mirror_->currentIndex() > 3; }
 
 QString DragDock::cycleMirror() {
   mirror_->setCurrentIndex((mirror_->currentIndex() + 1) % mirror_->count());
@@ -185,6 +201,7 @@ bool DragDock::freeBlend() const { return blend_->currentIndex() == 1; }
 int DragDock::regionCount() const { return regions_->value() == 0 ? kAutomaticRegions : regions_->value(); }
 
 double DragDock::regionSmoothness() const { return region_smoothness_->value(); }
+double DragDock::handleStiffness() const { return handle_stiffness_->value(); }
 
 void DragDock::showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles) {
   QStringList past;

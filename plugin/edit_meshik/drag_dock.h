@@ -34,7 +34,11 @@ class DragDock : public QWidget {
   bool linearFeatureSpace() const;
   // The "Mirror" option: -1 off, else the axis (0, 1, 2) normal to the mirror plane.
   int mirrorAxis() const;
-  // Steps the "Mirror" option to the next choice (off, X, Y, Z, off, ...); returns its text.
+  // Whether the mirror plane goes through a vertex the user picks (else through the rest mesh's
+  // centre).
+  bool mirrorThroughPickedVertex() const;
+  // Steps the "Mirror" option to the next choice (off, X, Y, Z through the centre, X, Y, Z through
+  // a picked vertex, off, ...); returns its text.
   QString cycleMirror();
   double weightRegularization() const;
   // The "Stretch blend" option: true for the paper's free weights, false for the affine space.
@@ -42,6 +46,8 @@ class DragDock : public QWidget {
   // The "Regions" option: a count >= 1 (1: one weight vector), or meshik::kAutomaticRegions.
   int regionCount() const;
   double regionSmoothness() const;
+  // The "Handle stiffness" option: 0 for hard handles, > 0 for soft ones (SolverOptions).
+  double handleStiffness() const;
 
   // The readout of a finished pose: #E weights, Gauss-Newton iterations, solve time, inverted faces.
   void showPose(const std::vector<double>& weights, int iterations, double solve_ms, int inverted_triangles);
@@ -54,6 +60,7 @@ class DragDock : public QWidget {
  signals:
   void examplesChanged();
   void optionsChanged();
+  void mirrorChanged();
   void resetPose();
   void clearHandles();
   void addKeyframe();
@@ -70,6 +77,7 @@ class DragDock : public QWidget {
   QComboBox* blend_;
   QSpinBox* regions_;
   QDoubleSpinBox* region_smoothness_;
+  QDoubleSpinBox* handle_stiffness_;
   std::vector<QProgressBar*> weight_bars_;  // a fixed number, hidden when unused
   std::vector<QString> weight_names_;
   QLabel* extrapolation_;

@@ -80,6 +80,7 @@ void DragTool::forgetSession() {
   last_weights_.clear();
   inverted_.clear();
   active_group_ = 0;
+  picked_mirror_plane_.reset();
   example_ids_.clear();
   history_.clear();
   keyframes_.clear();
@@ -108,6 +109,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
   dock_->setVisible(true);
   connect(panel_, &DragDock::examplesChanged, this, &DragTool::rebuildExamples);
   connect(panel_, &DragDock::optionsChanged, this, &DragTool::restartWorker);
+  connect(panel_, &DragDock::mirrorChanged, this, &DragTool::mirrorModeChanged);
   connect(panel_, &DragDock::resetPose, this, &DragTool::resetPose);
   connect(panel_, &DragDock::clearHandles, this, &DragTool::clearHandles);
   connect(panel_, &DragDock::addKeyframe, this, &DragTool::addKeyframe);
@@ -203,6 +205,7 @@ void DragTool::restartWorker() {
   options.blend = panel_->freeBlend() ? Blend::kFree : Blend::kAffine;
   options.regions = panel_->regionCount();
   options.region_smoothness = panel_->regionSmoothness();
+  options.handle_stiffness = panel_->handleStiffness();
   worker_ = std::make_unique<SolveWorker>(
       example_set_, options, [this] { QMetaObject::invokeMethod(this, "applyFinishedPose", Qt::QueuedConnection); },
       triangles_);
@@ -228,7 +231,7 @@ void DragTool::suspend() {
   rectangle_.reset();
   projection_.reset();
   example_set_.reset();
-  latency_.clear();
+  timings_.clear();
   converged_solve_ = false;
   if (area_) area_->removeEventFilter(this);
   delete dock_.data();  // deletes the panel too (null when MeshLab's window already deleted it)
@@ -297,9 +300,11 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
   const double waiting_ms = std::chrono::duration<double, std::milli>(applying - outcome.finished).count();
   const double buffers_ms = millisecondsSince(applying);
   if (drag_ || rotation_) {
-    latency_.add(latency_ms);
-    solve_ms_.add(outcome.solve_ms);
-    overhead_ms_.add(waiting_ms + buffers_ms);
+    timings_.latency.add(latency_ms);
+    timings_.solve.add(outcome.solve_ms);
+    timings_.overhead.add(waiting_ms + buffers_ms);
+    timings_.waiting.add(waiting_ms);
+    timings_.writing.add(buffers_ms);
   }
   if (panel_) {
     panel_->showError(QString());

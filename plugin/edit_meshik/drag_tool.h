@@ -13,6 +13,7 @@
 #include "group_rotation.h"
 #include "keyframe_list.h"
 #include "latency_stats.h"
+#include "mirror_pairing.h"
 #include "pose_state.h"
 #include "screen_projection.h"
 #include "solve_worker.h"
@@ -71,6 +72,7 @@ class DragTool : public QObject, public EditTool {
   void saveConstraintFile();
   void savePose();
   void poseToNewLayer();
+  void mirrorModeChanged();  // forgets a picked mirror plane
 
  private:
   struct Click {
@@ -120,9 +122,13 @@ class DragTool : public QObject, public EditTool {
   void pushStep(std::shared_ptr<const PoseState> before, const QString& text);
   void showHandleCount();
 
-  // Symmetry ("Mirror" in the dock): pairs the newest handle with the vertex nearest its mirror
-  // image (added as a handle of a group of its own), and moves the partners of the active group's
-  // handles to the mirror images of their targets.
+  // Symmetry ("Mirror" in the dock): the mirror plane (none when off, or while a plane through a
+  // picked vertex waits for its click); the click that picks that plane's vertex (returns whether
+  // the click was taken for it); pairing the newest handle with the vertex nearest its mirror
+  // image (added as a handle in the mirrored group of its group, else in a group of its own); and
+  // moving the partners of the active group's handles to the mirror images of their targets.
+  std::optional<MirrorPlane> mirrorPlane() const;
+  bool pickMirrorPlane(int vertex);
   void addMirrorPartner();
   void mirrorActiveGroup();
 
@@ -134,6 +140,9 @@ class DragTool : public QObject, public EditTool {
   void cancelRotation();
   bool handleRotationKey(QKeyEvent* event);
   void cancelDrag();
+  // A mouse move during a drag or a turn: the group's new targets (mirrored) posted to the worker
+  // as a quick solve; no repaint (the new pose repaints when it is in the layer).
+  void moveHandles(const QMouseEvent* event);
   // Sends a mouse or wheel event to MeshLab's own view navigation (trackball).
   void navigate(QEvent* event);
   QString helpText() const;
@@ -150,6 +159,7 @@ class DragTool : public QObject, public EditTool {
   std::vector<double> last_weights_;    // #E weights of the pose in the layer (empty at rest)
   std::vector<int> inverted_;           // triangles the last pose turned inside out
   int active_group_ = 0;                // the group R turns and ctrl+click adds to
+  std::optional<MirrorPlane> picked_mirror_plane_;  // through a picked vertex (for its axis)
   QUndoStack history_;
   KeyframeList keyframes_;
 
@@ -175,9 +185,7 @@ class DragTool : public QObject, public EditTool {
   bool converged_solve_ = false;  // the solve being applied is the end of a drag's (for the log)
   bool layer_has_selection_ = false;  // its selection overlay must follow the vertices
   SolveWorker::Counts drag_start_counts_;
-  LatencyStats latency_;
-  LatencyStats solve_ms_;
-  LatencyStats overhead_ms_;
+  DragTimings timings_;
   QPointer<QDockWidget> dock_;
   QPointer<DragDock> panel_;
 };

@@ -69,6 +69,13 @@ bool DragTool::eventFilter(QObject* watched, QEvent* event) {
       return true;
     }
   }
+  if (watched == area_ && event->type() == QEvent::MouseMove && !navigating_ && (drag_ || rotation_dragging_)) {
+    // A move of a drag or turn is taken here, before GLArea, which would repaint the view for it:
+    // the view is repainted once the new pose is in the layer (refreshBuffers), so the GUI thread
+    // is not busy painting an unchanged pose when the worker's result arrives.
+    moveHandles(static_cast<QMouseEvent*>(event));
+    return true;
+  }
   return QObject::eventFilter(watched, event);
 }
 
@@ -117,9 +124,7 @@ void DragTool::mousePressEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
       active_group_ = groups_[grabbed];
       step_before_ = captureState();
       drag_.emplace(*projection_, targets_, grabbed, groupMembers(groups_, active_group_), x, y);
-      latency_.clear();
-      solve_ms_.clear();
-      overhead_ms_.clear();
+      timings_.clear();
       drag_start_counts_ = worker_->counts();
       area->update();
       return;
@@ -133,22 +138,30 @@ void DragTool::mouseMoveEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
     navigate(event);
     return;
   }
+  if (drag_ || rotation_dragging_) {
+    moveHandles(event);
+    return;
+  }
+  const auto [x, y] = glPosition(event);
+  if (pressed_ && (rectangle_ || std::hypot(x - pressed_->x, y - pressed_->y) >= 5.0)) {
+    rectangle_ = Rectangle{pressed_->x, pressed_->y, x, y};
+    area->update();
+  }
+}
+
+void DragTool::moveHandles(const QMouseEvent* event) {
   const Clock::time_point now = Clock::now();
   const auto [x, y] = glPosition(event);
-  if (rotation_ && rotation_dragging_ && typed_degrees_.isEmpty()) {
+  if (rotation_ && rotation_dragging_) {
+    if (!typed_degrees_.isEmpty()) return;  // typed degrees rule the turn
     targets_ = rotation_->targetsTurnedBy(rotation_->dialDegrees(x, y));
   } else if (drag_) {
     targets_ = drag_->targetsAt(x, y);
   } else {
-    if (pressed_ && (rectangle_ || std::hypot(x - pressed_->x, y - pressed_->y) >= 5.0)) {
-      rectangle_ = Rectangle{pressed_->x, pressed_->y, x, y};
-      area->update();
-    }
     return;
   }
   mirrorActiveGroup();
   postSolve(true, now);  // one warm-started Gauss-Newton step per move; the release converges
-  area->update();
 }
 
 void DragTool::mouseReleaseEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
@@ -177,15 +190,18 @@ void DragTool::mouseReleaseEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
   convergeNow();
   const QString summary =
       QStringLiteral("%1 moves, %2 solves (%3 coalesced, %4 superseded), latency median %5 ms, max %6 ms; "
-                     "solve median %7 ms, overhead median %8 ms")
+                     "solve median %7 ms, overhead median %8 ms (waiting for the GUI thread %9 ms, writing the "
+                     "layer and GL buffers %10 ms)")
           .arg(counts.moves - drag_start_counts_.moves)
           .arg(counts.solves - drag_start_counts_.solves)
           .arg(counts.coalesced - drag_start_counts_.coalesced)
           .arg(counts.superseded - drag_start_counts_.superseded)
-          .arg(latency_.median(), 0, 'f', 1)
-          .arg(latency_.max(), 0, 'f', 1)
-          .arg(solve_ms_.median(), 0, 'f', 1)
-          .arg(overhead_ms_.median(), 0, 'f', 2);
+          .arg(timings_.latency.median(), 0, 'f', 1)
+          .arg(timings_.latency.max(), 0, 'f', 1)
+          .arg(timings_.solve.median(), 0, 'f', 1)
+          .arg(timings_.overhead.median(), 0, 'f', 2)
+          .arg(timings_.waiting.median(), 0, 'f', 2)
+          .arg(timings_.writing.median(), 0, 'f', 2);
   log(summary);
   if (panel_) panel_->showLatency(summary);
   pushStep(std::move(step_before_), QStringLiteral("drag group %1").arg(group));
@@ -215,9 +231,7 @@ void DragTool::beginRotation() {
   rotation_.emplace(*projection_, targets_, groupMembers(groups_, active_group_), x, y);
   typed_degrees_.clear();
   rotation_dragging_ = false;
-  latency_.clear();
-  solve_ms_.clear();
-  overhead_ms_.clear();
+  timings_.clear();
   log(QStringLiteral("turning group %1: drag to turn, X/Y/Z axis, type degrees, Return applies, Backspace cancels")
           .arg(active_group_));
   if (area_) area_->update();
@@ -321,7 +335,7 @@ void DragTool::handleClick(const Click& click, MeshModel& layer) {
     float depth = 1.0f;
     glReadPixels(static_cast<GLint>(click.x), static_cast<GLint>(click.y), 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
     const int vertex = pickVertex(*projection_, last_written_, click.x, click.y, depth, kPickRadiusPixels);
-    if (vertex < 0) return;
+    if (vertex < 0 || (!click.remove && pickMirrorPlane(vertex))) return;
     const auto found = std::find(handles_.begin(), handles_.end(), vertex);
     if (click.remove) {
       if (found == handles_.end()) return;

@@ -53,6 +53,9 @@ void DragTool::saveConstraintFile() {
             .arg(file.groups.size())
             .arg(file.frames.size())
             .arg(path));
+    if (panel_ && panel_->handleStiffness() > 0.0)
+      log(QStringLiteral("the file holds the handles as hard ones (it has no handle stiffness): meshik pose "
+                         "replays its targets exactly, not the soft pose shown"));
   } catch (const std::exception& error) {  // ConstraintWriteError, or no memory for the text
     report(QString::fromStdString(error.what()));
   }

@@ -24,10 +24,11 @@ using meshik_test::ExampleMeshes;
 class TubeSolver : public ::testing::TestWithParam<FeatureSpace> {
  protected:
   void SetUp() override {
-    meshes_ = meshik_test::make_tube_examples();
-    set_ = std::make_shared<ExampleSet>(meshes_.view(), meshes_.example_pointers());
-    handles_ = meshik_test::farthest_point_handles(meshes_.rest, 8);
-    diagonal_ = meshik_test::bounding_box_diagonal(meshes_.rest);
+    meshik_test::TubeProblem problem = meshik_test::make_tube_problem();
+    meshes_ = std::move(problem.meshes);
+    set_ = std::move(problem.set);
+    handles_ = std::move(problem.handles);
+    diagonal_ = problem.diagonal;
   }
   Solver make_solver(const SolverOptions& extra = {}) const {
     SolverOptions options = extra;

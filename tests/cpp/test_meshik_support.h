@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -178,6 +179,23 @@ inline void use_principal_logs(meshik::ExampleSet& set, const std::vector<const 
   const meshik::TriangleFrames frames =
       meshik::compute_triangle_frames(impl.rest.data(), impl.triangles.data(), impl.num_triangles);
   impl.features = meshik::compute_example_features(frames, adjacency, impl.triangles.data(), pointers, {}, false);
+}
+
+// The tube of make_tube_examples as a shared example set, with `num_handles` farthest-point
+// handles and its bounding-box diagonal: the fixture of the solver's tests.
+struct TubeProblem {
+  ExampleMeshes meshes;
+  std::shared_ptr<meshik::ExampleSet> set;
+  std::vector<int> handles;
+  double diagonal = 0.0;
+};
+inline TubeProblem make_tube_problem(int num_handles = 8) {
+  TubeProblem problem;
+  problem.meshes = make_tube_examples();
+  problem.set = std::make_shared<meshik::ExampleSet>(problem.meshes.view(), problem.meshes.example_pointers());
+  problem.handles = farthest_point_handles(problem.meshes.rest, num_handles);
+  problem.diagonal = bounding_box_diagonal(problem.meshes.rest);
+  return problem;
 }
 
 }  // namespace meshik_test

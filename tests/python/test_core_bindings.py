@@ -125,6 +125,20 @@ def test_warm_start_and_energies(tube):
     np.testing.assert_allclose(warm.vertices, cold.vertices, atol=1e-8)
 
 
+def test_soft_handles_stiff_approach_the_hard_pose_and_soft_keep_the_shape(tube):
+    rest, faces, examples = tube
+    targets = examples[0][HANDLES].copy()
+    targets[0, 0] += 1.0  # out of the examples' reach: hard handles pull that vertex alone
+    hard = meshik.Solver(rest, faces, examples, HANDLES).solve(targets)
+    stiff = meshik.Solver(rest, faces, examples, HANDLES, handle_stiffness=1e6).solve(targets)
+    soft = meshik.Solver(rest, faces, examples, HANDLES, handle_stiffness=1e-4).solve(targets)
+    assert np.abs(stiff.vertices - hard.vertices).max() < 1e-4 * np.ptp(rest, axis=0).max()
+    # Soft: example 0's shape moved as a whole, the handle short of its target.
+    offset = soft.vertices - examples[0]
+    assert np.abs(offset - offset.mean(axis=0)).max() < 0.01
+    assert abs(soft.vertices[HANDLES[0], 0] - targets[0, 0]) > 0.5
+
+
 @pytest.mark.parametrize("call, message", [
     (lambda t: meshik.Solver(t[0][:, :2], t[1], t[2], HANDLES), r"rest_vertices must have shape \(n, 3\), got \(132, 2\)"),
     (lambda t: meshik.Solver(t[0], t[1].astype(float), t[2], HANDLES), "faces must be an integer array"),
@@ -134,6 +148,7 @@ def test_warm_start_and_energies(tube):
     (lambda t: meshik.Solver(t[0], t[1], t[2], []), "no handles"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES, feature_space="cubic"), "feature_space must be"),
     (lambda t: meshik.ExampleSet(t[0], t[1], t[2], feature_precision="half"), "feature_precision must be"),
+    (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES, handle_stiffness=-1.0), "handle_stiffness must be finite and >= 0"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(np.zeros((3, 3))), r"targets must have shape \(8, 3\)"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(t[0][HANDLES], [1.0]), r"initial_weights must have shape \(3,\)"),
     (lambda t: meshik.Solver(t[0], t[1], t[2], HANDLES).solve(t[0][HANDLES], [1.0, np.inf, 0.0]),

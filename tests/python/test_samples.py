@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SETS = ["bar", "flag", "limb"]
+SETS = ["bar", "flag", "limb", "wings"]
 
 
 def read_obj(path: pathlib.Path):
@@ -56,3 +56,19 @@ def test_sample_is_a_consistent_example_set(samples_dir, name):
         else:
             near = np.linalg.norm(rest_v - np.array(spec["near"]), axis=1) <= spec["radius"]
             assert near.any(), f"handle region {group} selects no vertex"
+
+
+def test_wings_are_exactly_symmetric_about_x_zero(samples_dir):
+    """The wings set (the Drag to Pose tool's Mirror check): vertices, triangles and every example
+    mirror onto themselves across the plane x = 0."""
+    folder = samples_dir / "wings"
+    rest, faces = read_obj(folder / "rest.obj")
+    image = rest * [-1, 1, 1]
+    mate = np.array([np.argmin(np.linalg.norm(rest - p, axis=1)) for p in image])
+    assert np.array_equal(rest[mate], image)
+    triangles = {tuple(sorted(f)) for f in faces.tolist()}
+    assert all(tuple(sorted(mate[f])) in triangles for f in faces)
+    for example in sorted(folder.glob("example_*.obj")):
+        pose = read_obj(example)[0]
+        assert np.array_equal(pose[mate], pose * [-1, 1, 1]), example.name
+

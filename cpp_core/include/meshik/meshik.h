@@ -88,6 +88,13 @@ struct SolverOptions {
   // weights), which makes the weights one global vector where the handles do not say otherwise.
   // 0.01: the best of 0, 0.001, 0.01, 1 and 100 on the horse's held-out gallop (bench_holdout).
   double region_smoothness = 0.01;
+  // 0: hard handles, each vertex exactly at its target. > 0: soft handles, each pulled towards its
+  // target by handle_stiffness * d_h |x_h - t_h|^2 in the energy (d_h: the vertex's diagonal entry
+  // of G'^T G', so the value is scale-free; a handle used by no triangle stays at its target): a
+  // target the examples cannot reach then bends the region around the handle instead of pulling
+  // that one vertex into a spike. Large values approach the hard pose, small ones leave the
+  // examples' pose nearly untouched. Every component still needs a handle.
+  double handle_stiffness = 0.0;
 };
 
 // Result of one solve.

@@ -1,6 +1,7 @@
 // Drag latencies (mouse-move event to updated GL buffers) collected over one drag.
 #pragma once
 
+#include <initializer_list>
 #include <vector>
 
 namespace meshik::edit {
@@ -17,6 +18,17 @@ class LatencyStats {
 
  private:
   std::vector<double> samples_;
+};
+
+// The timings of the poses applied during one drag or turn, in milliseconds: latency (mouse-move
+// event to updated GL buffers) = waiting for the worker (a solve in flight) + solve + overhead,
+// overhead = waiting for the GUI thread (worker done to the pose taken up on the GUI thread) +
+// writing (the layer's positions and normals, then MeshLab's GL buffers).
+struct DragTimings {
+  LatencyStats latency, solve, overhead, waiting, writing;
+  void clear() {
+    for (LatencyStats* stats : {&latency, &solve, &overhead, &waiting, &writing}) stats->clear();
+  }
 };
 
 }  // namespace meshik::edit

@@ -11,6 +11,8 @@ MirrorPlane MirrorPlane::throughCentre(const std::vector<double>& vertices, int 
   return {axis, 0.5 * (box.low[axis] + box.high[axis])};
 }
 
+MirrorPlane MirrorPlane::throughPoint(const double* point, int axis) { return {axis, point[axis]}; }
+
 void MirrorPlane::reflect(const double* p, double* out) const {
   for (int k = 0; k < 3; ++k) out[k] = k == axis ? 2.0 * offset - p[k] : p[k];
 }
@@ -28,6 +30,16 @@ int mirrorPartner(const std::vector<double>& rest, int vertex, const MirrorPlane
     }
   }
   return best;
+}
+
+int partnerGroup(const std::vector<int>& handles, const std::vector<int>& groups, const std::vector<int>& mirrors,
+                 int handle) {
+  for (size_t h = 0; h < handles.size(); ++h) {
+    if (static_cast<int>(h) == handle || groups[h] != groups[handle] || mirrors[h] < 0) continue;
+    for (size_t p = 0; p < handles.size(); ++p)
+      if (handles[p] == mirrors[h] && groups[p] != groups[handle]) return groups[p];
+  }
+  return -1;
 }
 
 }  // namespace meshik::edit

@@ -575,3 +575,23 @@ TEST(LatencyStats, MedianAndMax) {
 }
 
 }  // namespace
+
+// A plane through a picked point keeps that point's coordinate; a new partner joins the group that
+// mirrors its handle's group, unless that is the handle's own group (a handle on the plane).
+TEST(MirrorPairing, APickedPlaneGoesThroughThePointAndPartnersJoinTheMirroredGroup) {
+  const double point[3] = {0.25, -1.0, 3.0};
+  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughPoint(point, 1);
+  double image[3];
+  const double p[3] = {1.0, 2.0, 3.0};
+  plane.reflect(p, image);
+  EXPECT_EQ(image[0], 1.0);
+  EXPECT_EQ(image[1], -4.0);
+  EXPECT_EQ(image[2], 3.0);
+  // Handles: vertex 10 (group 1) mirrored by 20 (group 2); vertex 11 just added to group 1.
+  const std::vector<int> handles{10, 20, 11}, groups{1, 2, 1}, mirrors{20, 10, -1};
+  EXPECT_EQ(meshik::edit::partnerGroup(handles, groups, mirrors, 2), 2);
+  EXPECT_EQ(meshik::edit::partnerGroup(handles, groups, mirrors, 1), -1) << "group 2 has no other member";
+  // A group whose other handle lies on the plane (its own mirror, in its own group): a new group.
+  const std::vector<int> on_plane_groups{1, 1, 1}, on_plane_mirrors{10, -1, -1};
+  EXPECT_EQ(meshik::edit::partnerGroup(handles, on_plane_groups, on_plane_mirrors, 2), -1);
+}
