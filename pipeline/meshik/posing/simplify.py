@@ -27,6 +27,9 @@ SIMPLIFIERS = ("fast", "openmesh")
 # A replayed vertex farther than this fraction of the simplified rest mesh's mean edge length from
 # the triangles it stands for (in any pose) is moved back onto an original vertex.
 DEFAULT_SURFACE_TOLERANCE = 0.5
+# fast-simplification's `agg` (its own default): how fast its error threshold grows from pass to
+# pass. Lower is closer to collapsing the cheapest edge first but may stop short of the target.
+DEFAULT_AGGRESSIVENESS = 7.0
 
 
 @dataclass(frozen=True)
@@ -46,11 +49,13 @@ class SimplifiedMeshes:
 
 
 def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, method: str = "fast",
-             surface_tolerance: float = DEFAULT_SURFACE_TOLERANCE) -> SimplifiedMeshes:
+             surface_tolerance: float = DEFAULT_SURFACE_TOLERANCE,
+             aggressiveness: float = DEFAULT_AGGRESSIVENESS) -> SimplifiedMeshes:
     """Simplify an example set to about `target_triangles` triangles with the named method.
 
     handles: #H original vertex indices that must stay vertices of their own (locked by
              "openmesh"; with "fast" they are kept exactly in position but two may merge).
+    surface_tolerance, aggressiveness: the fast simplifier's (see simplify_fast); unused by "openmesh".
     Raises PipelineError for an unknown method or a target not below the current triangle count.
     """
     if method not in SIMPLIFIERS:
@@ -60,18 +65,23 @@ def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, 
                             f"the target must be at least 4 and below the current count")
     handles = np.asarray(handles, dtype=np.int64)
     if method == "fast":
-        return simplify_fast(meshes, target_triangles, handles, surface_tolerance)
+        return simplify_fast(meshes, target_triangles, handles, surface_tolerance, aggressiveness)
     return simplify_openmesh(meshes, target_triangles, handles)
 
 
 def simplify_fast(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray,
-                  surface_tolerance: float = DEFAULT_SURFACE_TOLERANCE) -> SimplifiedMeshes:
-    """fast-simplification on the rest pose, its collapses replayed on every example (see module doc)."""
+                  surface_tolerance: float = DEFAULT_SURFACE_TOLERANCE,
+                  aggressiveness: float = DEFAULT_AGGRESSIVENESS) -> SimplifiedMeshes:
+    """fast-simplification on the rest pose, its collapses replayed on every example (see module doc).
+
+    surface_tolerance: DEFAULT_SURFACE_TOLERANCE's fraction; aggressiveness: fast-simplification's agg.
+    """
     import fast_simplification
 
     faces = meshes.faces
     poses = (meshes.rest,) + meshes.examples
-    _, _, collapses = fast_simplification.simplify(meshes.rest, faces, target_count=target_triangles, return_collapses=True)
+    _, _, collapses = fast_simplification.simplify(meshes.rest, faces, target_count=target_triangles, agg=aggressiveness,
+                                                   return_collapses=True)
     replayed = []
     for pose in poses:
         points, simplified_faces, vertex_map = fast_simplification.replay_simplification(pose, faces, collapses)
@@ -91,18 +101,20 @@ def simplify_fast(meshes: ExampleMeshes, target_triangles: int, handles: np.ndar
 
 
 def simplify_animation(meshes: ExampleMeshes, frames: np.ndarray, target_triangles: int, handles: np.ndarray,
-                       method: str = "fast") -> Tuple[SimplifiedMeshes, np.ndarray]:
+                       method: str = "fast",
+                       aggressiveness: float = DEFAULT_AGGRESSIVENESS) -> Tuple[SimplifiedMeshes, np.ndarray]:
     """Simplify an example set and an animation posed from it at full resolution, alike.
 
     frames: #frames by #V by 3 posed positions. The frames join the examples as further poses (the
     OpenMesh quadric sums over them; the fast simplifier's collapses, chosen on the rest pose, are
     replayed on them with the same guard), so each simplified frame is the simplification of its
-    full frame. Returns (the simplified example set, #frames by #S by 3 simplified frames).
+    full frame. aggressiveness: the fast simplifier's (see simplify_fast). Returns (the simplified
+    example set, #frames by #S by 3 simplified frames).
     Raises PipelineError as simplify does.
     """
     count = len(meshes.examples)
     together = replace(meshes, examples=tuple(meshes.examples) + tuple(np.asarray(frames, dtype=np.float64)))
-    simplified = simplify(together, target_triangles, handles, method)
+    simplified = simplify(together, target_triangles, handles, method, aggressiveness=aggressiveness)
     poses = simplified.meshes.examples
     examples = replace(simplified.meshes, examples=poses[:count])
     return replace(simplified, meshes=examples), np.stack(poses[count:])
