@@ -7,7 +7,10 @@ Two simplifiers:
   in every pose alike.
 - "openmesh": OpenMesh's decimater in C++ (meshik._core.decimate) with the handle vertices
   locked and the error quadric summed over the rest pose and every example. It keeps a subset
-  of the original vertices, so every pose lies exactly on its own vertices.
+  of the original vertices, so every pose lies exactly on its own vertices. A collapse is also
+  refused when a removed vertex would end farther than a bound from the simplified surface in any
+  pose; the bound is DISTANCE_BOUND_FACTOR times the worst such distance of the rest pose
+  decimated alone to the same size, relaxed by RELAX_FACTOR while the target is not reached.
 
 Both return a SimplifiedMeshes: the simplified example set and the vertex correspondence.
 simplify_animation simplifies an animation posed at full resolution together with its example set:
@@ -30,6 +33,12 @@ DEFAULT_SURFACE_TOLERANCE = 0.5
 # fast-simplification's `agg` (its own default): how fast its error threshold grows from pass to
 # pass. Lower is closer to collapsing the cheapest edge first but may stop short of the target.
 DEFAULT_AGGRESSIVENESS = 7.0
+# The openmesh simplifier's distance bound: this times the rest pose's own worst vertex distance
+# (rest decimated alone to the same size); multiplied by RELAX_FACTOR, at most MAX_RELAXATIONS
+# times, while the target triangle count is not reached (then no bound).
+DISTANCE_BOUND_FACTOR = 1.3
+RELAX_FACTOR = 1.25
+MAX_RELAXATIONS = 10
 
 
 @dataclass(frozen=True)
@@ -41,11 +50,16 @@ class SimplifiedMeshes:
     source_vertex:   #S: the original vertex each simplified vertex stands for (it lies on it in
                      every pose unless the fast simplifier kept its replayed position)
     snapped:         how many vertices the fast simplifier put back on an original vertex
+    distance_bound:  the openmesh simplifier's bound on a removed vertex's distance from the
+                     simplified surface in any pose (inf: none was kept); None for fast
+    relaxations:     how many times the openmesh simplifier relaxed that bound to reach the target
     """
     meshes: ExampleMeshes
     vertex_map: np.ndarray
     source_vertex: np.ndarray
     snapped: int = 0
+    distance_bound: Optional[float] = None
+    relaxations: int = 0
 
 
 def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, method: str = "fast",
@@ -164,21 +178,30 @@ def _mean_edge_length(vertices: np.ndarray, faces: np.ndarray) -> float:
 
 
 def simplify_openmesh(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray) -> SimplifiedMeshes:
-    """OpenMesh decimation driven by every pose, handles locked (see module doc)."""
+    """OpenMesh decimation driven by every pose, handles locked, distance bounded (see module doc)."""
     from meshik import _core
 
     if not hasattr(_core, "decimate"):
         raise PipelineError("this build of meshik._core has no OpenMesh decimator (bind_decimate not registered): "
                             "use --simplifier fast")
+    faces = meshes.faces.astype(np.int32)
+    locked = handles.astype(np.int32)
     try:
-        kept, faces, vertex_map = _core.decimate(meshes.rest, meshes.faces.astype(np.int32), list(meshes.examples),
-                                                 handles.astype(np.int32), target_triangles)
+        *_, rest_error = _core.decimate(meshes.rest, faces, [], locked, target_triangles)
+        bound = DISTANCE_BOUND_FACTOR * rest_error if rest_error > 0 else np.inf
+        for relaxations in range(MAX_RELAXATIONS + 2):
+            kept, simplified_faces, vertex_map, _ = _core.decimate(meshes.rest, faces, list(meshes.examples), locked,
+                                                                   target_triangles, max_distance=bound)
+            if len(simplified_faces) <= target_triangles or np.isinf(bound):
+                break
+            bound = bound * RELAX_FACTOR if relaxations < MAX_RELAXATIONS else np.inf
     except ValueError as error:  # meshik.InputError: a non-manifold or inconsistently oriented mesh
         raise PipelineError(f"{meshes.rest_path}: {error}") from None
     kept = np.asarray(kept, dtype=np.int64)
-    simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(faces, dtype=np.int64),
+    simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(simplified_faces, dtype=np.int64),
                          examples=tuple(example[kept] for example in meshes.examples))
-    return SimplifiedMeshes(meshes=simplified, vertex_map=np.asarray(vertex_map, dtype=np.int64), source_vertex=kept)
+    return SimplifiedMeshes(meshes=simplified, vertex_map=np.asarray(vertex_map, dtype=np.int64), source_vertex=kept,
+                            distance_bound=float(bound), relaxations=relaxations)
 
 
 def remap_handles(simplified: Optional[SimplifiedMeshes], handles: np.ndarray):
