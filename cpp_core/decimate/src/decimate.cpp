@@ -5,6 +5,7 @@
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -212,13 +213,22 @@ Mesh build_mesh(const MeshView& rest) {
   return mesh;
 }
 
+// How many triangles of the mesh are not deleted.
+size_t remaining_triangles(const Mesh& mesh) {
+  size_t count = 0;
+  for (auto fh : mesh.faces()) count += mesh.status(fh).deleted() ? 0 : 1;
+  return count;
+}
+
 }  // namespace
 
 DecimationResult decimate_example_set(const MeshView& rest, const std::vector<const double*>& examples,
                                       const std::vector<int>& locked, int target_triangles,
-                                      double max_normal_change_degrees, double max_distance) {
+                                      double max_normal_change_degrees, const DistanceBound& bound) {
   if (target_triangles < 1) throw InputError("the target triangle count must be at least 1");
-  if (!(max_distance > 0.0)) throw InputError("the distance bound must be positive (infinity for none)");
+  if (!(bound.max_distance > 0.0)) throw InputError("the distance bound must be positive (infinity for none)");
+  if (!(bound.relax_factor > 1.0) || bound.max_relaxations < 0)
+    throw InputError("the distance bound's relax factor must exceed 1 and its relaxation count be at least 0");
   Mesh mesh = build_mesh(rest);
   mesh.request_vertex_status();
   mesh.request_edge_status();
@@ -240,11 +250,23 @@ DecimationResult decimate_example_set(const MeshView& rest, const std::vector<co
   decimater.module(module).configure(&poses, max_normal_change_degrees);
   decimation::ModPoseDistance::Handle distance_guard;
   decimater.add(distance_guard);
-  decimater.module(distance_guard).configure(&poses, max_distance);
+  DecimationResult result;
+  result.bound = bound.max_distance;
+  decimater.module(distance_guard).configure(&poses, result.bound);
   decimater.initialize();
   decimater.decimate_to_faces(0, static_cast<size_t>(target_triangles));
+  // each call rebuilds the collapse queue from the current mesh under the relaxed bound
+  while (remaining_triangles(mesh) > static_cast<size_t>(target_triangles) && !std::isinf(result.bound)) {
+    ++result.relaxations;
+    const double least_refused = decimater.module(distance_guard).least_refused();
+    result.bound = result.relaxations > bound.max_relaxations
+                       ? std::numeric_limits<double>::infinity()
+                       : std::max(result.bound * bound.relax_factor, least_refused);
+    decimater.module(distance_guard).configure(&poses, result.bound);
+    // OpenMesh counts the deleted triangles too (no garbage collection): aim at the same remainder
+    decimater.decimate_to_faces(0, mesh.n_faces() - (remaining_triangles(mesh) - static_cast<size_t>(target_triangles)));
+  }
 
-  DecimationResult result;
   result.worst_distance = decimater.module(distance_guard).worst_distance();
   std::vector<int> new_index(rest.num_vertices, -1);
   for (int v = 0; v < rest.num_vertices; ++v) {

@@ -30,6 +30,7 @@ ModPoseDistance::~ModPoseDistance() {
 void ModPoseDistance::configure(const Poses* poses, double max_distance) {
   poses_ = poses;
   max_distance_ = max_distance;
+  least_refused_ = std::numeric_limits<double>::infinity();
 }
 
 void ModPoseDistance::initialize() {
@@ -103,18 +104,27 @@ float ModPoseDistance::collapse_priority(const CollapseInfo& ci) {
   std::vector<std::array<int, 3>> replacing;  // the triangles around v0 after the collapse
   for (auto fh : m.vf_range(ci.v0))
     if (fh != ci.fl && fh != ci.fr) replacing.push_back(corners(fh, ci.v0, ci.v1));
-  const auto within_bound = [&](int point) {
-    for (const auto& triangle : replacing)
-      if (pose_distance(point, triangle, max_distance_) <= max_distance_) return true;
-    return false;
+  // the least bound under which `point` would pass (a lower bound of it once above the bound)
+  const auto needed = [&](int point) {
+    double least = std::numeric_limits<double>::infinity();
+    for (const auto& triangle : replacing) {
+      least = std::min(least, pose_distance(point, triangle, max_distance_));
+      if (least <= max_distance_) break;
+    }
+    return least;
   };
-  if (!within_bound(ci.v0.idx())) return float(Base::ILLEGAL_COLLAPSE);
+  const auto refuse = [&](double least_needed) {
+    least_refused_ = std::min(least_refused_, least_needed);
+    return float(Base::ILLEGAL_COLLAPSE);
+  };
+  double need = needed(ci.v0.idx());
+  if (need > max_distance_) return refuse(need);
   for (auto fh : m.vf_range(ci.v0))
     for (int point : m.property(attached_, fh))
-      if (!within_bound(point)) return float(Base::ILLEGAL_COLLAPSE);
+      if ((need = needed(point)) > max_distance_) return refuse(need);
   const std::vector<int> covered = covered_around(ci.v0);
   for (const auto& triangle : replacing)
-    if (surface_gap(triangle, covered, max_distance_) > max_distance_) return float(Base::ILLEGAL_COLLAPSE);
+    if ((need = surface_gap(triangle, covered, max_distance_)) > max_distance_) return refuse(need);
   return float(Base::LEGAL_COLLAPSE);
 }
 

@@ -34,13 +34,17 @@ class ModPoseDistance : public OpenMesh::Decimater::ModBaseT<Mesh> {
   ~ModPoseDistance() override;
 
   // poses: every pose's positions (kept alive by the caller); max_distance: the bound (infinity:
-  // never refuse, only track).
+  // never refuse, only track). Resets least_refused().
   void configure(const Poses* poses, double max_distance);
 
   void initialize() override;
   float collapse_priority(const CollapseInfo& ci) override;
   void preprocess_collapse(const CollapseInfo& ci) override;
   void postprocess_collapse(const CollapseInfo& ci) override;
+
+  // A lower bound of the least bound under which a collapse refused since configure() would have
+  // been allowed (infinity if none was refused).
+  double least_refused() const { return least_refused_; }
 
   // The larger, over all poses, of: the distance of a removed vertex from the triangle it is
   // attached to, and the distance of a sample point of a remaining triangle from the original
@@ -62,6 +66,7 @@ class ModPoseDistance : public OpenMesh::Decimater::ModBaseT<Mesh> {
 
   const Poses* poses_ = nullptr;
   double max_distance_ = std::numeric_limits<double>::infinity();
+  double least_refused_ = std::numeric_limits<double>::infinity();
   OpenMesh::FPropHandleT<std::vector<int>> attached_;  // per face: removed vertices attached to it
   OpenMesh::FPropHandleT<std::vector<int>> covered_;   // per face: original triangles it covers
   std::vector<std::array<int, 3>> original_triangles_;  // #F original vertex ids of each triangle

@@ -9,8 +9,9 @@ Two simplifiers:
   locked and the error quadric summed over the rest pose and every example. It keeps a subset
   of the original vertices, so every pose lies exactly on its own vertices. A collapse is also
   refused when a removed vertex would end farther than a bound from the simplified surface in any
-  pose; the bound is DISTANCE_BOUND_FACTOR times the worst such distance of the rest pose
-  decimated alone to the same size, relaxed by RELAX_FACTOR while the target is not reached.
+  pose, or a simplified triangle's sample points from the original surface; the bound is
+  DISTANCE_BOUND_FACTOR times the worst such distance of the rest pose decimated alone to the
+  same size, relaxed by RELAX_FACTOR (decimation going on) while the target is not reached.
 
 Both return a SimplifiedMeshes: the simplified example set and the vertex correspondence.
 simplify_animation simplifies an animation posed at full resolution together with its example set:
@@ -35,10 +36,10 @@ DEFAULT_SURFACE_TOLERANCE = 0.5
 DEFAULT_AGGRESSIVENESS = 7.0
 # The openmesh simplifier's distance bound: this times the rest pose's own worst vertex distance
 # (rest decimated alone to the same size); multiplied by RELAX_FACTOR, at most MAX_RELAXATIONS
-# times, while the target triangle count is not reached (then no bound).
+# times, while the target triangle count is not reached (then lifted).
 DISTANCE_BOUND_FACTOR = 1.3
 RELAX_FACTOR = 1.25
-MAX_RELAXATIONS = 10
+MAX_RELAXATIONS = 20
 
 
 @dataclass(frozen=True)
@@ -187,14 +188,11 @@ def simplify_openmesh(meshes: ExampleMeshes, target_triangles: int, handles: np.
     faces = meshes.faces.astype(np.int32)
     locked = handles.astype(np.int32)
     try:
-        *_, rest_error = _core.decimate(meshes.rest, faces, [], locked, target_triangles)
-        bound = DISTANCE_BOUND_FACTOR * rest_error if rest_error > 0 else np.inf
-        for relaxations in range(MAX_RELAXATIONS + 2):
-            kept, simplified_faces, vertex_map, _ = _core.decimate(meshes.rest, faces, list(meshes.examples), locked,
-                                                                   target_triangles, max_distance=bound)
-            if len(simplified_faces) <= target_triangles or np.isinf(bound):
-                break
-            bound = bound * RELAX_FACTOR if relaxations < MAX_RELAXATIONS else np.inf
+        *_, rest_error, _, _ = _core.decimate(meshes.rest, faces, [], locked, target_triangles)
+        kept, simplified_faces, vertex_map, _, bound, relaxations = _core.decimate(
+            meshes.rest, faces, list(meshes.examples), locked, target_triangles,
+            max_distance=DISTANCE_BOUND_FACTOR * rest_error if rest_error > 0 else np.inf,
+            relax_factor=RELAX_FACTOR, max_relaxations=MAX_RELAXATIONS)
     except ValueError as error:  # meshik.InputError: a non-manifold or inconsistently oriented mesh
         raise PipelineError(f"{meshes.rest_path}: {error}") from None
     kept = np.asarray(kept, dtype=np.int64)
