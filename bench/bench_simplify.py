@@ -34,16 +34,7 @@ def main() -> int:
     folders = gallop_data(__doc__, "bench_simplify")
     if folders is None:
         return 0
-    from meshik.inputs import constraints
-    from meshik.inputs.meshio import load_example_set
-    from meshik.posing.animation import pose_animation
-
-    with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
-        constraint_set = constraints.load(gallop_constraints(*folders, pathlib.Path(scratch)))
-    meshes = load_example_set(constraint_set.rest, constraint_set.examples)
-    resolved = constraints.resolve(constraint_set, meshes.rest)
-    options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
-    full = pose_animation(meshes, resolved.handles, resolved.targets, options)
+    meshes, resolved, options, full = gallop_animation(folders)
     print(f"horse gallop: {len(resolved.frame_names)} frames, {len(meshes.faces)} triangles, {len(resolved.handles)} "
           f"handles, {len(meshes.examples)} examples; full-resolution solve {1e3 * full.solve_seconds.mean():.2f} ms "
           f"per frame. Deviation from the full frame / its bbox diagonal, {SAMPLES} samples both ways.")
@@ -57,12 +48,29 @@ def main() -> int:
     return 0 if ok else 1
 
 
+def gallop_animation(folders):
+    """(example set, resolved constraints, solver options, full-resolution PosedAnimation) of the gallop.
+
+    folders: (horse-poses, horse-gallop) as gallop_data returns them.
+    """
+    from meshik.inputs import constraints
+    from meshik.inputs.meshio import load_example_set
+    from meshik.posing.animation import pose_animation
+
+    with tempfile.TemporaryDirectory(prefix="meshik-bench-") as scratch:
+        constraint_set = constraints.load(gallop_constraints(*folders, pathlib.Path(scratch)))
+    meshes = load_example_set(constraint_set.rest, constraint_set.examples)
+    resolved = constraints.resolve(constraint_set, meshes.rest)
+    options = dict({"feature_space": "nonlinear"}, **constraint_set.solver_options())
+    return meshes, resolved, options, pose_animation(meshes, resolved.handles, resolved.targets, options)
+
+
 def bench_row(meshes, resolved, options, full, method: str, size) -> bool:
     """One row of the table; returns whether the default meets the floor (and the handles their targets)."""
     from meshik.posing.animation import pose_animation
     from meshik.posing.simplify import remap_handles, simplify, simplify_animation
 
-    target = size if isinstance(size, int) else int(round(size * len(meshes.faces)))
+    target = triangle_target(size, len(meshes.faces))
     start = time.perf_counter()
     simplified, default = simplify_animation(meshes, full.vertices, target, resolved.handles, method)
     carry_seconds = (time.perf_counter() - start) / len(default)
@@ -92,6 +100,11 @@ def bench_row(meshes, resolved, options, full, method: str, size) -> bool:
           f"{default_dev[worst, 1] / rest_error:.2f}x the rest error (floor {FLOOR_RATIO}x); worst simplify-first frame "
           f"{resolved.frame_names[int(np.argmax(first_dev[:, 1]))]}; simplifying a frame {1e3 * carry_seconds:.2f} ms")
     return meets
+
+
+def triangle_target(size, triangles: int) -> int:
+    """The triangle count a size asks for: an int as is, a fraction of `triangles` rounded."""
+    return size if isinstance(size, int) else int(round(size * triangles))
 
 
 def deviations(simplified_frames, faces, full_frames, full_faces) -> np.ndarray:

@@ -4,6 +4,7 @@
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/vector.h>
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,10 +28,13 @@ IntArray to_numpy(std::vector<int>&& values, size_t rows, size_t columns) {
   return meshik_bindings::owned_array(std::move(values), {rows, columns});
 }
 
-// decimate(rest, triangles, examples, locked, target_triangles, max_normal_change_degrees)
-//   -> (kept_vertices #S, triangles #SF by 3, vertex_map #V); see meshik/decimate.h.
+// decimate(rest, triangles, examples, locked, target_triangles, max_normal_change_degrees, max_distance,
+//          relax_factor, max_relaxations)
+//   -> (kept_vertices #S, triangles #SF by 3, vertex_map #V, worst_distance, bound, relaxations);
+// see meshik/decimate.h.
 nb::tuple decimate(Positions rest, Triangles triangles, const std::vector<Positions>& examples, Indices locked,
-                   int target_triangles, double max_normal_change_degrees) {
+                   int target_triangles, double max_normal_change_degrees,
+                   double max_distance, double relax_factor, int max_relaxations) {
   const int num_vertices = static_cast<int>(rest.shape(0));
   std::vector<const double*> example_pointers;
   for (size_t i = 0; i < examples.size(); ++i) {
@@ -49,12 +53,14 @@ nb::tuple decimate(Positions rest, Triangles triangles, const std::vector<Positi
   {
     nb::gil_scoped_release unlocked;
     result = meshik::decimate_example_set(view, example_pointers, locked_vertices, target_triangles,
-                                          max_normal_change_degrees);
+                                          max_normal_change_degrees,
+                                          meshik::DistanceBound{max_distance, relax_factor, max_relaxations});
   }
   const size_t kept = result.kept_vertices.size(), faces = result.triangles.size() / 3;
   return nb::make_tuple(to_numpy(std::move(result.kept_vertices), kept, 0),
                         to_numpy(std::move(result.triangles), faces, 3),
-                        to_numpy(std::move(result.vertex_map), static_cast<size_t>(num_vertices), 0));
+                        to_numpy(std::move(result.vertex_map), static_cast<size_t>(num_vertices), 0),
+                        result.worst_distance, result.bound, result.relaxations);
 }
 
 }  // namespace
@@ -62,10 +68,17 @@ nb::tuple decimate(Positions rest, Triangles triangles, const std::vector<Positi
 void bind_decimate(nb::module_& m) {
   m.def("decimate", &decimate, nb::arg("rest"), nb::arg("triangles"), nb::arg("examples"), nb::arg("locked"),
         nb::arg("target_triangles"), nb::arg("max_normal_change_degrees") = 60.0,
+        nb::arg("max_distance") = std::numeric_limits<double>::infinity(), nb::arg("relax_factor") = 1.25,
+        nb::arg("max_relaxations") = 10,
         "Deformation-aware decimation of an example set (OpenMesh decimater).\n\n"
         "rest: #V by 3 float64; triangles: #F by 3 int32; examples: list of #V by 3 float64;\n"
         "locked: vertex ids never removed (the handles); target_triangles: stop at this many.\n"
         "The error of a collapse is the quadric error summed over the rest pose and every example;\n"
-        "collapses that flip a triangle by more than max_normal_change_degrees in any pose are refused.\n"
-        "Returns (kept_vertices #S, triangles #SF by 3 indexing kept_vertices, vertex_map #V).");
+        "collapses that flip a triangle by more than max_normal_change_degrees in any pose, or that leave a\n"
+        "removed vertex farther than max_distance from the simplified surface (or a simplified triangle's\n"
+        "sample point from the original surface) in any pose, are refused; short of the target, the bound\n"
+        "is multiplied by relax_factor up to max_relaxations times, then lifted.\n"
+        "Returns (kept_vertices #S, triangles #SF by 3 indexing kept_vertices, vertex_map #V,\n"
+        "worst_distance: the largest such distance over all poses, bound: the bound at the end,\n"
+        "relaxations: how many times it was relaxed).");
 }

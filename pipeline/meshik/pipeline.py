@@ -320,6 +320,11 @@ def _check_grid_resolution(source: Path, grid, rest: np.ndarray, frames: np.ndar
                         f"mesh's diagonal: move that frame's targets closer or raise {option}")
 
 
+def _finite_or_none(value: Optional[float]) -> Optional[float]:
+    """The value as a float when given and finite, else None (JSON has no infinity)."""
+    return None if value is None or not np.isfinite(value) else float(value)
+
+
 def _report(name, key, constraint_set, meshes, simplified, simplification: Tuple[str, bool], solver_options, resolved,
             posed: PosedAnimation, fit: np.ndarray, grid, timings: Dict[str, float]) -> Dict[str, Any]:
     """The report.json document (without "outputs", which the commit adds); simplification: (simplifier,
@@ -343,6 +348,7 @@ def _report(name, key, constraint_set, meshes, simplified, simplification: Tuple
             "simplifier": simplifier, "posed": "simplified example set" if simplify_first else "full resolution",
             "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
             "snapped_vertices": simplified.snapped,
+            "distance_bound": _finite_or_none(simplified.distance_bound), "bound_relaxations": simplified.relaxations,
             "merged_handle_vertices": int(len(resolved.handles) - len(np.unique(simplified.vertex_map[resolved.handles])))},
         "solver": dict(solver_options, handle_vertices=len(resolved.handles), posed_vertices=posed_count),
         "frame_count": len(frames),

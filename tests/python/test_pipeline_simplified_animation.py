@@ -55,6 +55,8 @@ def test_default_frames_are_the_simplified_full_frames(samples_dir, tmp_path, me
     rest, faces = load_mesh(samples_dir / "limb" / "rest.obj")
     assert report["simplification"]["posed"] == "full resolution"
     assert report["solver"]["posed_vertices"] == len(rest)
+    bound = report["simplification"]["distance_bound"]  # openmesh's; None when lifted or for fast
+    assert (bound is None or bound > 0) and (method == "openmesh" or bound is None)
     assert report["handle_fit_error"]["max"] <= TOLERANCE * np.linalg.norm(np.ptp(rest, axis=0)) \
         or report["simplification"]["merged_handle_vertices"] > 0
     assert_simplified_full_frames(tmp_path / "full", full_report, tmp_path / "simple", report, rest, faces,

@@ -57,6 +57,19 @@ def test_fast_guard_keeps_vertices_near_their_surface(tube_meshes):
         np.testing.assert_array_equal(pose, original[snapped.source_vertex])
 
 
+def test_fast_aggressiveness_is_fast_simplifications_agg(tube_meshes):
+    import fast_simplification
+
+    results = {}
+    for aggressiveness in (7.0, 3.0):
+        result = results[aggressiveness] = simplify(tube_meshes, 150, HANDLES, "fast", aggressiveness=aggressiveness)
+        _, _, collapses = fast_simplification.simplify(tube_meshes.rest, tube_meshes.faces, target_count=150,
+                                                       agg=aggressiveness, return_collapses=True)
+        _, faces, _ = fast_simplification.replay_simplification(tube_meshes.rest, tube_meshes.faces, collapses)
+        np.testing.assert_array_equal(result.meshes.faces, faces)
+    assert not np.array_equal(results[7.0].meshes.faces, results[3.0].meshes.faces)  # the option counts here
+
+
 def test_fast_merged_handles_keep_the_first(tube_meshes):
     ring = np.arange(580, 600)  # the whole top ring, simplified hard: neighbours merge
     result = simplify(tube_meshes, 60, ring, "fast")
@@ -89,7 +102,7 @@ def test_openmesh_keeps_detail_that_moves_in_an_example():
     # the same collapses chosen from the rest pose alone, then applied to the example
     from meshik import _core
 
-    kept, rest_faces, _ = _core.decimate(vertices, faces.astype(np.int32), [], np.array([0], np.int32), 200)
+    kept, rest_faces, *_ = _core.decimate(vertices, faces.astype(np.int32), [], np.array([0], np.int32), 200)
     rest_only_error = surface_distance(raised[kept], rest_faces, raised, faces)
     aware_error = surface_distance(aware.meshes.examples[0], aware.meshes.faces, raised, faces)
     assert aware_error < 0.25 * rest_only_error

@@ -1,25 +1,26 @@
 // Deformation-aware decimation of an example set with OpenMesh's decimater (see decimate.h).
 #include "meshik/decimate.h"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
+#include <limits>
 #include <unordered_map>
+
+#include "decimation_mesh.h"
+#include "pose_distance_module.h"
 
 namespace meshik {
 namespace {
 
-struct DoubleTraits : public OpenMesh::DefaultTraits {
-  typedef OpenMesh::Vec3d Point;
-  typedef OpenMesh::Vec3d Normal;
-};
-using Mesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
-using Vec = OpenMesh::Vec3d;
+using decimation::Mesh;
+using decimation::Poses;
+using decimation::Vec;
 
 // Symmetric 4 by 4 error quadric of Garland and Heckbert: the sum of w (n.x + d)^2 over planes.
 // Stored as its 10 distinct entries.
@@ -42,18 +43,6 @@ struct Quadric {
     return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
            2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
   }
-};
-
-// Vertex positions of every pose (rest first): #P pointers to #V by 3 row-major arrays.
-struct Poses {
-  std::vector<const double*> positions;
-  int num_vertices = 0;
-
-  Vec at(int pose, int vertex) const {
-    const double* p = positions[pose] + 3 * static_cast<size_t>(vertex);
-    return Vec(p[0], p[1], p[2]);
-  }
-  int count() const { return static_cast<int>(positions.size()); }
 };
 
 // Decimater module: priority = quadric error summed over all poses at the kept vertex;
@@ -224,12 +213,22 @@ Mesh build_mesh(const MeshView& rest) {
   return mesh;
 }
 
+// How many triangles of the mesh are not deleted.
+size_t remaining_triangles(const Mesh& mesh) {
+  size_t count = 0;
+  for (auto fh : mesh.faces()) count += mesh.status(fh).deleted() ? 0 : 1;
+  return count;
+}
+
 }  // namespace
 
 DecimationResult decimate_example_set(const MeshView& rest, const std::vector<const double*>& examples,
                                       const std::vector<int>& locked, int target_triangles,
-                                      double max_normal_change_degrees) {
+                                      double max_normal_change_degrees, const DistanceBound& bound) {
   if (target_triangles < 1) throw InputError("the target triangle count must be at least 1");
+  if (!(bound.max_distance > 0.0)) throw InputError("the distance bound must be positive (infinity for none)");
+  if (!(bound.relax_factor > 1.0) || bound.max_relaxations < 0)
+    throw InputError("the distance bound's relax factor must exceed 1 and its relaxation count be at least 0");
   Mesh mesh = build_mesh(rest);
   mesh.request_vertex_status();
   mesh.request_edge_status();
@@ -249,10 +248,26 @@ DecimationResult decimate_example_set(const MeshView& rest, const std::vector<co
   ModPoseQuadric::Handle module;
   decimater.add(module);
   decimater.module(module).configure(&poses, max_normal_change_degrees);
+  decimation::ModPoseDistance::Handle distance_guard;
+  decimater.add(distance_guard);
+  DecimationResult result;
+  result.bound = bound.max_distance;
+  decimater.module(distance_guard).configure(&poses, result.bound);
   decimater.initialize();
   decimater.decimate_to_faces(0, static_cast<size_t>(target_triangles));
+  // each call rebuilds the collapse queue from the current mesh under the relaxed bound
+  while (remaining_triangles(mesh) > static_cast<size_t>(target_triangles) && !std::isinf(result.bound)) {
+    ++result.relaxations;
+    const double least_refused = decimater.module(distance_guard).least_refused();
+    result.bound = result.relaxations > bound.max_relaxations
+                       ? std::numeric_limits<double>::infinity()
+                       : std::max(result.bound * bound.relax_factor, least_refused);
+    decimater.module(distance_guard).configure(&poses, result.bound);
+    // OpenMesh counts the deleted triangles too (no garbage collection): aim at the same remainder
+    decimater.decimate_to_faces(0, mesh.n_faces() - (remaining_triangles(mesh) - static_cast<size_t>(target_triangles)));
+  }
 
-  DecimationResult result;
+  result.worst_distance = decimater.module(distance_guard).worst_distance();
   std::vector<int> new_index(rest.num_vertices, -1);
   for (int v = 0; v < rest.num_vertices; ++v) {
     if (!mesh.status(mesh.vertex_handle(v)).deleted()) {
