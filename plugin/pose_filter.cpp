@@ -10,6 +10,7 @@
 #include <common/plugins/interfaces/filter_plugin.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <QElapsedTimer>
 
 namespace meshik::plugin {
@@ -39,6 +40,10 @@ RichParameterList poseParameters(const MeshDocument& document) {
   parameters.addParam(RichFloat(
       "regionsmoothness", 0.01f, "Region smoothness",
       "Pull between neighbouring regions' weights (with few handles it makes them one global vector)."));
+  parameters.addParam(RichFloat(
+      "handlestiffness", 0.0f, "Handle stiffness",
+      "0 = hard handles (met exactly); > 0 = soft handles, each pulled towards its target with this stiffness. "
+      "A constraint file's \"handle_stiffness\" is not read here: give the same value to replay its poses."));
   parameters.addParam(RichBool(
       "inplace", false, "Pose in place",
       "Write the pose into the current (rest) layer instead of a new layer \"MeshIK pose of ...\". The new "
@@ -73,6 +78,9 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   options.vertex_regions = handle_targets.vertex_regions;
   options.region_smoothness = parameters.getFloat("regionsmoothness");
   if (!(options.region_smoothness >= 0.0)) throw MLException("regionsmoothness: expected a number >= 0");
+  options.handle_stiffness = parameters.getFloat("handlestiffness");
+  if (!(std::isfinite(options.handle_stiffness) && options.handle_stiffness >= 0.0))
+    throw MLException("handlestiffness: expected a finite number >= 0");
   if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
   if (options.threads < 0 || options.threads > kMaxThreads)
     throw MLException(QString("threads: expected 0 (all cores) or a count from 1 to %1, got %2")

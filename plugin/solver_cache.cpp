@@ -11,7 +11,7 @@ bool sameOptions(const SolverOptions& a, const SolverOptions& b) {
   return a.feature_space == b.feature_space && a.weight_regularization == b.weight_regularization &&
          a.max_iterations == b.max_iterations && a.tolerance == b.tolerance && a.threads == b.threads &&
          a.blend == b.blend && a.regions == b.regions && a.vertex_regions == b.vertex_regions &&
-         a.region_smoothness == b.region_smoothness;
+         a.region_smoothness == b.region_smoothness && a.handle_stiffness == b.handle_stiffness;
 }
 
 }  // namespace

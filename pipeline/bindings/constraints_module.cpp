@@ -104,6 +104,7 @@ NB_MODULE(_constraints, m) {
       .def_ro("regions", &mc::ConstraintDocument::regions)
       .def_ro("region_smoothness", &mc::ConstraintDocument::region_smoothness)
       .def_ro("weight_regularization", &mc::ConstraintDocument::weight_regularization)
+      .def_ro("handle_stiffness", &mc::ConstraintDocument::handle_stiffness)
       .def_ro("max_iterations", &mc::ConstraintDocument::max_iterations)
       .def_ro("tolerance", &mc::ConstraintDocument::tolerance)
       .def_ro("fps", &mc::ConstraintDocument::fps);

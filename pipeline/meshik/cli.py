@@ -2,6 +2,7 @@
 file failed (with a message on stderr saying which and why), 2 for a command-line mistake."""
 import argparse
 import json
+import math
 import signal
 import sys
 import threading
@@ -196,7 +197,7 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _blend_options(parser: argparse.ArgumentParser, role: str) -> None:
-    """Adds --blend and --regions; role: how they apply, with {} for what each sets (e.g. "override the
+    """Adds --blend, --regions and --handle-stiffness; role: how they apply, with {} for what each sets (e.g. "override the
     constraint file's {}")."""
     parser.add_argument("--blend", choices=("affine", "free"), default=None,
                         help=role.format("blend of the examples' stretches") + ": affine (tied to the rest pose, "
@@ -204,6 +205,9 @@ def _blend_options(parser: argparse.ArgumentParser, role: str) -> None:
     parser.add_argument("--regions", type=_region_count, default=None, metavar="N",
                         help=role.format("regions") + ": spatially varying weights over N regions clustered from "
                              "the examples, or auto (1: one weight vector, the default)")
+    parser.add_argument("--handle-stiffness", type=_handle_stiffness, default=None, metavar="S",
+                        help=role.format("handle stiffness") + ": 0 = hard handles (met exactly, the default), "
+                             "> 0 = soft handles pulled towards their targets")
 
 
 def _run_pose(args) -> int:
@@ -214,7 +218,7 @@ def _run_pose(args) -> int:
                       feature_space=args.feature_space, quiet=args.quiet, quantization_bits=args.quantization_bits,
                       force=args.force, threads=args.threads, glb=args.glb, position_bits=args.position_bits,
                       glb_targets=args.glb_targets, simplify_first=args.simplify_first, blend=args.blend,
-                      regions=args.regions)
+                      regions=args.regions, handle_stiffness=args.handle_stiffness)
     if report.get("skipped") and not args.quiet:
         _print_line(f"{args.out}: outputs already complete (use --force to redo)", sys.stderr)
     return 0
@@ -238,7 +242,8 @@ def _run_batch(args) -> int:
                          feature_space=args.feature_space, quantization_bits=args.quantization_bits, force=args.force,
                          threads=args.threads, glb=args.glb, position_bits=args.position_bits,
                          glb_targets=args.glb_targets, simplify_first=args.simplify_first,
-                         solver_defaults={name: value for name, value in (("blend", args.blend), ("regions", args.regions))
+                         solver_defaults={name: value for name, value in (("blend", args.blend), ("regions", args.regions),
+                                                                       ("handle_stiffness", args.handle_stiffness))
                                           if value is not None})
     failed = [o for o in outcomes if o.status in ("failed", "crashed")]
     if failed:
@@ -344,6 +349,17 @@ def _region_count(text: str):
     if count < 1:
         raise argparse.ArgumentTypeError(f"expected a region count >= 1 or auto, got {text!r}")
     return count
+
+
+def _handle_stiffness(text: str) -> float:
+    """argparse type for --handle-stiffness: a finite number >= 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
+    return value
 
 
 def _simplify_target(text: str):

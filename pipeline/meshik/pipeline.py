@@ -52,7 +52,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
              glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
              glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
-             regions: Union[None, int, str] = None, solver_defaults: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
+             regions: Union[None, int, str] = None, handle_stiffness: Optional[float] = None, solver_defaults: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -62,9 +62,10 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
               instead (faster per frame, but its weights, and so its motion, may differ);
     formats: "drc", "glb" and/or extensions pymeshlab writes ("ply", "obj", ...);
     feature_space: overrides the constraint file's ("nonlinear" or "linear");
-    blend / regions: override the file's ("affine" or "free"; a region count or "auto");
-    solver_defaults: "blend" and / or "regions" as above, for a file that does not set them (a batch's
-                     --blend / --regions);
+    blend / regions / handle_stiffness: override the file's ("affine" or "free"; a region count or "auto";
+                                        a number >= 0, 0 = hard handles);
+    solver_defaults: "blend", "regions" and / or "handle_stiffness" as above, for a file that does not set
+                     them (a batch's --blend / --regions / --handle-stiffness);
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
     threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
@@ -91,9 +92,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     check_writable(out_dir)
     _check_choice("blend", blend, constraint_files.BLENDS + (None,))
     defaults = dict(solver_defaults or {})
-    unknown = sorted(set(defaults) - {"blend", "regions"})
+    unknown = sorted(set(defaults) - {"blend", "regions", "handle_stiffness"})
     if unknown:
-        raise PipelineError(f"solver defaults may set blend and regions only, got {', '.join(unknown)}")
+        raise PipelineError(f"solver defaults may set blend, regions and handle_stiffness only, got {', '.join(unknown)}")
     _check_choice("default blend", defaults.get("blend"), constraint_files.BLENDS + (None,))
     solver_options = dict({"feature_space": "nonlinear"}, **defaults)
     solver_options.update(constraint_set.solver_options())
@@ -103,6 +104,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         solver_options["blend"] = blend
     if regions is not None:
         solver_options["regions"] = regions
+    if handle_stiffness is not None:
+        solver_options["handle_stiffness"] = handle_stiffness
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
                   (glb, position_bits, glb_targets) if "glb" in formats else None, simplify_first)
     if not force and is_complete(out_dir, key):

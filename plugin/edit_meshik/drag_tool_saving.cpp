@@ -44,6 +44,7 @@ void DragTool::saveConstraintFile() {
   file.free_blend = panel_ && panel_->freeBlend();
   file.regions = panel_ ? panel_->regionCount() : 1;
   file.region_smoothness = panel_ ? panel_->regionSmoothness() : 0.01;
+  file.handle_stiffness = panel_ ? panel_->handleStiffness() : 0.0;
   if (keyframes_.count() > 0) keyframes_.fill(file);
   else fillOneFrame(file, "drag", handles_, groups_, targets_);
   try {
@@ -53,9 +54,6 @@ void DragTool::saveConstraintFile() {
             .arg(file.groups.size())
             .arg(file.frames.size())
             .arg(path));
-    if (panel_ && panel_->handleStiffness() > 0.0)
-      log(QStringLiteral("the file holds the handles as hard ones (it has no handle stiffness): meshik pose "
-                         "replays its targets exactly, not the soft pose shown"));
   } catch (const std::exception& error) {  // ConstraintWriteError, or no memory for the text
     report(QString::fromStdString(error.what()));
   }

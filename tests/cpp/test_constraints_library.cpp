@@ -177,8 +177,10 @@ TEST(ConstraintLibrary, WrittenBlendAndRegionSettingsReadBack) {
   settings.blend = "free";
   settings.regions = 4;
   settings.region_smoothness = 0.25;
+  settings.handle_stiffness = 2.5;
   mc::write_constraint_file(path, "rest.obj", {"example_1.obj"}, {{"tip", {7}, {1, 2, 3}}}, "pose-1", settings);
   mc::ConstraintDocument document = mc::read_constraint_file(path);
+  EXPECT_EQ(document.handle_stiffness, 2.5);
   EXPECT_EQ(document.blend, "free");
   ASSERT_TRUE(document.regions.has_value());
   EXPECT_EQ(document.regions->count, 4);
@@ -189,7 +191,27 @@ TEST(ConstraintLibrary, WrittenBlendAndRegionSettingsReadBack) {
   document = mc::read_constraint_file(path);
   ASSERT_TRUE(document.regions.has_value());
   EXPECT_TRUE(document.regions->automatic);
+  settings.handle_stiffness.reset();  // left out: the file keeps hard handles
+  mc::write_constraint_file(path, "rest.obj", {"example_1.obj"}, {{"tip", {7}, {1, 2, 3}}}, "pose-1", settings);
+  EXPECT_FALSE(mc::read_constraint_file(path).handle_stiffness.has_value());
+  settings.handle_stiffness = std::numeric_limits<double>::infinity();
+  try {
+    mc::write_constraint_file(path, "rest.obj", {"example_1.obj"}, {{"tip", {7}, {1, 2, 3}}}, "pose-1", settings);
+    FAIL() << "an infinite handle stiffness was written";
+  } catch (const mc::ConstraintError& error) {
+    EXPECT_EQ(std::string(error.what()), path + ": handle_stiffness: expected a finite number >= 0");
+  }
   fs::remove_all(dir);
+}
+
+TEST(ConstraintLibrary, HandleStiffnessMustBeAFiniteNumberAtLeastZero) {
+  const std::string body = R"("handles": {"a": [1]}, "frames": [{}], "handle_stiffness": )";
+  EXPECT_EQ(parse_error(std::string(kHead) + body + "-0.5}"), "t.json: handle_stiffness: expected a number >= 0, got -0.5");
+  // JSON has no non-finite numbers: one beyond doubles is refused by the parser, naming the file.
+  EXPECT_EQ(parse_error(std::string(kHead) + body + "1e999}").rfind("t.json: not valid JSON: ", 0), 0u);
+  EXPECT_EQ(parse_error(std::string(kHead) + body + "\"soft\"}"),
+            "t.json: handle_stiffness: expected a number, got \"soft\"");
+  EXPECT_EQ(mc::parse_constraints(std::string(kHead) + body + "0}", "t.json").handle_stiffness, 0.0);
 }
 
 TEST(ConstraintLibrary, WriterRefusesBadContentAndKeepsTheOldFile) {

@@ -144,6 +144,18 @@ def test_pose_with_free_blend_and_regions_equals_python_api():
     assert "regions" in apply_refused(ms, POSE, targetsource="Handle transform", handletransform=matrix, regions=-1)
 
 
+def test_pose_with_soft_handles_equals_python_api():
+    ms, rest, faces, examples = load_sample("limb")
+    handles = spread_vertices(rest, 12)
+    select_vertices(ms, handles)
+    matrix = rigid_transform(25.0, 2, [0.1, -0.2, 0.05])
+    output = ms.apply_filter(POSE, targetsource="Handle transform", handletransform=matrix, handlestiffness=0.5)
+    targets = rest[handles] @ matrix[:3, :3].T + matrix[:3, 3]
+    assert_same_pose(ms, output, python_pose(rest, faces, examples, handles, targets, handle_stiffness=0.5))
+    assert "handlestiffness" in apply_refused(ms, POSE, targetsource="Handle transform", handletransform=matrix,
+                                              handlestiffness=-1.0)
+
+
 def test_pose_is_the_same_for_any_thread_count_and_a_negative_count_is_refused():
     ms, rest, faces, examples = load_sample("limb")
     handles = spread_vertices(rest, 12)
@@ -242,7 +254,7 @@ def test_parameter_lists_document_every_parameter():
         POSE: ["examplelayers : str", "featurespace : str", "targetsource : str", "targetmesh : int",
                "constraintfile : str", "frame : str", "handletransform : numpy.ndarray[numpy.float64[4, 4]]",
                "iterations : int", "weightregularization : float", "blend : str", "regions : int",
-               "regionsmoothness : float", "inplace : bool", "threads : int"],
+               "regionsmoothness : float", "handlestiffness : float", "inplace : bool", "threads : int"],
         BLEND: ["examplelayers : str", "featurespace : str", "weights : str"],
     }
     for name, parameters in expected.items():

@@ -132,6 +132,8 @@ void read_options(const JsonValue& top, ConstraintDocument& document, ViolationL
   document.feature_space = read_choice(top, "feature_space", "nonlinear", "linear", problems);
   if (const JsonValue* value = top.find("weight_regularization"))
     document.weight_regularization = expect_number(*value, "weight_regularization", problems, 0.0);
+  if (const JsonValue* value = top.find("handle_stiffness"))
+    document.handle_stiffness = expect_number(*value, "handle_stiffness", problems, 0.0);
   if (const JsonValue* value = top.find("max_iterations")) {
     document.max_iterations = expect_int(*value, "max_iterations", problems, 1);
     constexpr std::int64_t kMaxIterations = std::numeric_limits<std::int32_t>::max();
@@ -405,7 +407,7 @@ ConstraintDocument read_document(const JsonValue& top, const std::string& source
   if (!expect_object(top, "", problems)) return document;
   check_members(top, "", {"format", "version", "rest", "examples", "handles", "frames"},
                 {"$schema", "feature_space", "blend", "regions", "region_smoothness", "weight_regularization",
-                 "max_iterations", "tolerance", "fps"},
+                 "handle_stiffness", "max_iterations", "tolerance", "fps"},
                 problems);
   read_format(top, problems);
   read_mesh_names(top, document, problems);

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 namespace meshik::constraints {
 namespace {
@@ -94,10 +95,11 @@ std::string document_text(const std::string& path, const std::string& rest, cons
       document["regions"] = *settings.regions;
   }
   if (settings.region_smoothness) document["region_smoothness"] = *settings.region_smoothness;
-  if (settings.weight_regularization) {
-    if (!std::isfinite(*settings.weight_regularization))
-      throw ConstraintError(path + ": weight_regularization: expected a finite number >= 0");
-    document["weight_regularization"] = *settings.weight_regularization;
+  for (const auto& [name, value] : {std::pair{"weight_regularization", settings.weight_regularization},
+                                     std::pair{"handle_stiffness", settings.handle_stiffness}}) {
+    if (!value) continue;
+    if (!std::isfinite(*value)) throw ConstraintError(path + ": " + name + ": expected a finite number >= 0");
+    document[name] = *value;
   }
   if (settings.max_iterations) document["max_iterations"] = *settings.max_iterations;
   OrderedJson handles = OrderedJson::object();

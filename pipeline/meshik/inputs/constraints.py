@@ -92,6 +92,7 @@ class ConstraintSet:
     regions: Union[None, int, str, Dict[str, Tuple[int, ...]]] = None
     region_smoothness: Optional[float] = None
     weight_regularization: Optional[float] = None
+    handle_stiffness: Optional[float] = None
     max_iterations: Optional[int] = None
     tolerance: Optional[float] = None
     fps: float = DEFAULT_FPS
@@ -100,8 +101,8 @@ class ConstraintSet:
     def solver_options(self) -> Dict[str, Any]:
         """The solver keyword arguments the file sets (feature_space, blend, regions, ...); vertex-group
         regions stay a dict here (region_vertex_groups turns them into meshik.Solver's array)."""
-        names = ("feature_space", "blend", "regions", "region_smoothness", "weight_regularization", "max_iterations",
-                 "tolerance")
+        names = ("feature_space", "blend", "regions", "region_smoothness", "weight_regularization", "handle_stiffness",
+                 "max_iterations", "tolerance")
         return {name: getattr(self, name) for name in names if getattr(self, name) is not None}
 
 
@@ -184,7 +185,7 @@ def _constraint_set(document, source: Path) -> ConstraintSet:
                      for frame in document.frames),
         feature_space=document.feature_space, blend=document.blend, regions=_regions(document.regions),
         region_smoothness=document.region_smoothness, weight_regularization=document.weight_regularization,
-        max_iterations=document.max_iterations, tolerance=document.tolerance, fps=document.fps, document=document)
+        handle_stiffness=document.handle_stiffness, max_iterations=document.max_iterations, tolerance=document.tolerance, fps=document.fps, document=document)
 
 
 def region_vertex_groups(groups: Dict[str, Sequence[int]], num_vertices: int, source) -> np.ndarray:

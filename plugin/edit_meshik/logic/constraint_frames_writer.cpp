@@ -78,6 +78,7 @@ void writeConstraintFrames(const std::string& path, const DragFrames& frames, co
     settings.regions = frames.regions == kAutomaticRegions ? -1 : frames.regions;
     settings.region_smoothness = frames.region_smoothness;
   }
+  if (frames.handle_stiffness != 0.0) settings.handle_stiffness = frames.handle_stiffness;
   settings.max_iterations = frames.max_iterations;
   try {
     constraints::write_constraint_frames(path, frames.rest_path, frames.example_paths, groups, written, settings);

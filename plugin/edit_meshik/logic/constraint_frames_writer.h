@@ -36,6 +36,7 @@ struct DragFrames {
   bool free_blend = false;                 // "blend": "free" (else "affine")
   int regions = 1;                         // "regions": a count >= 1, or meshik::kAutomaticRegions ("auto")
   double region_smoothness = 0.01;         // "region_smoothness", written with more than one region
+  double handle_stiffness = 0.0;           // "handle_stiffness", written when > 0 (soft handles)
   int max_iterations = 30;
   std::vector<DragGroup> groups;
   std::vector<DragKeyframe> frames;

@@ -534,7 +534,7 @@ TEST(SolveWorker, WeightsOfAnotherLengthAreNoWarmStart) {
   EXPECT_EQ(outcome->result.vertices, solver.solve(request.targets.data(), nullptr).vertices);
 }
 
-// The dock's blend and regions are saved, so `meshik pose` replays the tool's poses with them.
+// The dock's blend, regions and handle stiffness are saved, so `meshik pose` replays the tool's poses with them.
 TEST(ConstraintFramesWriter, WritesTheBlendAndTheRegions) {
   const std::filesystem::path folder = emptyFolder("meshik_edit_writer_blend_test");
   const std::string path = (folder / "drag.json").string();
@@ -542,8 +542,10 @@ TEST(ConstraintFramesWriter, WritesTheBlendAndTheRegions) {
   file.free_blend = true;
   file.regions = meshik::kAutomaticRegions;
   file.region_smoothness = 0.5;
+  file.handle_stiffness = 0.25;
   meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
   meshik::constraints::ConstraintDocument document = meshik::constraints::read_constraint_file(path);
+  EXPECT_EQ(document.handle_stiffness, std::optional<double>(0.25));
   EXPECT_EQ(document.blend, std::optional<std::string>("free"));
   ASSERT_TRUE(document.regions.has_value());
   EXPECT_TRUE(document.regions->automatic);
@@ -558,9 +560,10 @@ TEST(ConstraintFramesWriter, WritesTheBlendAndTheRegions) {
   EXPECT_EQ(document.regions->count, 3);
   EXPECT_FALSE(document.regions->automatic);
 
-  file = someFrames();  // one region: the file keeps the global weights' form
+  file = someFrames();  // one region, hard handles: the file keeps the global weights' form and no stiffness
   meshik::edit::writeConstraintFrames(path, file, nullptr, 0);
   EXPECT_FALSE(meshik::constraints::read_constraint_file(path).regions.has_value());
+  EXPECT_FALSE(meshik::constraints::read_constraint_file(path).handle_stiffness.has_value());
   std::filesystem::remove_all(folder);
 }
 

@@ -97,6 +97,7 @@ struct ConstraintDocument {
   std::optional<RegionSetting> regions;
   std::optional<double> region_smoothness;
   std::optional<double> weight_regularization;
+  std::optional<double> handle_stiffness;  // >= 0; 0 = hard handles
   std::optional<std::int64_t> max_iterations;
   std::optional<double> tolerance;
   double fps = 24.0;
@@ -160,6 +161,7 @@ struct WrittenSettings {
   std::optional<std::int64_t> regions;            // a region count >= 1, or -1 for "auto"
   std::optional<double> region_smoothness;        // >= 0
   std::optional<double> weight_regularization;    // k >= 0
+  std::optional<double> handle_stiffness;         // >= 0; 0 = hard handles
   std::optional<std::int64_t> max_iterations;     // >= 1
 };
 
