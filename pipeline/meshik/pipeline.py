@@ -52,7 +52,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
              stream: Optional[TextIO] = None, example_cache=None, threads: Optional[int] = None,
              glb: str = "quantized", position_bits: int = DEFAULT_POSITION_BITS,
              glb_targets: str = "basis", within=None, simplify_first: bool = False, blend: Optional[str] = None,
-             regions: Union[None, int, str] = None, handle_stiffness: Optional[float] = None, solver_defaults: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
+             regions: Union[None, int, str] = None, handle_stiffness: Optional[float] = None,
+             solver_defaults: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
     """Run one job and return its report (also written as out_dir/report.json).
 
     simplify: target triangle count (int), or the fraction of triangles to keep (float in (0, 1)),
@@ -100,12 +101,9 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
     solver_options.update(constraint_set.solver_options())
     if feature_space:
         solver_options["feature_space"] = feature_space
-    if blend:
-        solver_options["blend"] = blend
-    if regions is not None:
-        solver_options["regions"] = regions
-    if handle_stiffness is not None:
-        solver_options["handle_stiffness"] = handle_stiffness
+    for name, value in (("blend", blend), ("regions", regions), ("handle_stiffness", handle_stiffness)):
+        if value is not None:
+            solver_options[name] = value
     key = job_key(constraint_set, solver_options, simplify, simplifier, formats, quantization_bits,
                   (glb, position_bits, glb_targets) if "glb" in formats else None, simplify_first)
     if not force and is_complete(out_dir, key):

@@ -41,6 +41,17 @@ QLabel* fixedLabel(QWidget* parent, int lines) {
   return label;
 }
 
+// A spin box for a number in [0, maximum] shown with 4 decimals, stepping by `step`, starting at `value`.
+QDoubleSpinBox* numberBox(QWidget* parent, double maximum, double step, double value, const QString& tip) {
+  auto* box = new QDoubleSpinBox(parent);
+  box->setRange(0.0, maximum);
+  box->setDecimals(4);
+  box->setSingleStep(step);
+  box->setValue(value);
+  if (!tip.isEmpty()) box->setToolTip(tip);
+  return box;
+}
+
 }  // namespace
 
 DragDock::DragDock(QWidget* parent) : QWidget(parent) {
@@ -90,10 +101,7 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   feature_space_ = new QComboBox(this);
   feature_space_->addItems({tr("Nonlinear"), tr("Linear")});
   form->addRow(tr("Feature space"), feature_space_);
-  regularization_ = new QDoubleSpinBox(this);
-  regularization_->setRange(0.0, 1000.0);
-  regularization_->setDecimals(4);
-  regularization_->setSingleStep(0.01);
+  regularization_ = numberBox(this, 1000.0, 0.01, 0.0, QString());
   form->addRow(tr("Weight regularization"), regularization_);
   blend_ = new QComboBox(this);
   blend_->addItems({tr("Affine"), tr("Free")});
@@ -105,21 +113,14 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   regions_->setSpecialValueText(tr("Automatic"));
   regions_->setToolTip(tr("Regions of the surface with their own example weights (1: one set of weights)"));
   form->addRow(tr("Regions"), regions_);
-  region_smoothness_ = new QDoubleSpinBox(this);
-  region_smoothness_->setRange(0.0, 1000.0);
-  region_smoothness_->setDecimals(4);
-  region_smoothness_->setSingleStep(0.01);
-  region_smoothness_->setValue(0.01);
-  region_smoothness_->setToolTip(tr("How strongly neighbouring regions' weights are pulled together"));
+  region_smoothness_ =
+      numberBox(this, 1000.0, 0.01, 0.01, tr("How strongly neighbouring regions' weights are pulled together"));
   form->addRow(tr("Region smoothness"), region_smoothness_);
-  handle_stiffness_ = new QDoubleSpinBox(this);
-  handle_stiffness_->setRange(0.0, 1e6);
-  handle_stiffness_->setDecimals(4);
-  handle_stiffness_->setSingleStep(0.1);
-  handle_stiffness_->setSpecialValueText(tr("Hard"));
-  handle_stiffness_->setToolTip(tr("Hard: each handle exactly at its target. A stiffness > 0 makes the handles soft: "
+  handle_stiffness_ = numberBox(this, 1e6, 0.1, 0.0,
+                                tr("Hard: each handle exactly at its target. A stiffness > 0 makes the handles soft: "
                                    "a target out of the examples' reach bends the region instead of pulling one "
                                    "vertex into a spike (small: loose, large: nearly hard)"));
+  handle_stiffness_->setSpecialValueText(tr("Hard"));
   form->addRow(tr("Handle stiffness"), handle_stiffness_);
   mirror_ = new QComboBox(this);
   mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)"),

@@ -185,7 +185,8 @@ def _constraint_set(document, source: Path) -> ConstraintSet:
                      for frame in document.frames),
         feature_space=document.feature_space, blend=document.blend, regions=_regions(document.regions),
         region_smoothness=document.region_smoothness, weight_regularization=document.weight_regularization,
-        handle_stiffness=document.handle_stiffness, max_iterations=document.max_iterations, tolerance=document.tolerance, fps=document.fps, document=document)
+        handle_stiffness=document.handle_stiffness, max_iterations=document.max_iterations,
+        tolerance=document.tolerance, fps=document.fps, document=document)
 
 
 def region_vertex_groups(groups: Dict[str, Sequence[int]], num_vertices: int, source) -> np.ndarray:
