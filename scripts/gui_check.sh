@@ -324,13 +324,18 @@ drive_drag_tool() {
   summary=$(wait_log "MeshIK drag: [0-9]+ moves, [0-9]+ solves" 30) || fail "$name: the drag logged no summary (see $meshlab_log)"
   sleep 0.5
   shot "${name}_5_after_drag"
-  # Every move is solved, or folded into a later request (coalesced); every solve is shown and
-  # logged, or replaced by a newer one while the GUI thread was busy drawing (superseded).
-  local moves solves coalesced superseded logged
-  read -r moves solves coalesced superseded < <(sed -E \
-    's/.*: ([0-9]+) moves, ([0-9]+) solves \(([0-9]+) coalesced, ([0-9]+) superseded\).*/\1 \2 \3 \4/' <<<"$summary")
+  # No move is lost except by coalescing: Qt folds the moves queued while the GUI thread is busy
+  # into the newest one (how many arrive depends on the load), so the tool's last move must be
+  # where the cursor ended, 24 x 8 pixels above the grab; every move that reached the tool is
+  # solved, or folded into a later request (coalesced); every solve is shown and logged, or
+  # replaced by a newer one while the GUI thread was busy (superseded).
+  local moves solves coalesced superseded last_x last_y logged
+  read -r moves solves coalesced superseded last_x last_y < <(sed -E \
+    's/.*: ([0-9]+) moves, ([0-9]+) solves \(([0-9]+) coalesced, ([0-9]+) superseded\), the last move at screen ([0-9-]+) ([0-9-]+);.*/\1 \2 \3 \4 \5 \6/' <<<"$summary")
   logged=$(grep -cE "MeshIK drag: solve [0-9]+ " "$meshlab_log")
-  ((moves >= 20)) || fail "$name: only $moves of 24 mouse moves reached the tool"
+  ((moves >= 1)) || fail "$name: no mouse move reached the tool"
+  ((last_x == grab_x && last_y == grab_y - 192)) ||
+    fail "$name: the drag's last move was at $last_x $last_y, the cursor ended at $grab_x $((grab_y - 192))"
   ((solves + coalesced == moves)) || fail "$name: $moves moves but $solves solves and $coalesced coalesced"
   ((logged + superseded == solves)) || fail "$name: $solves solves, $superseded superseded, but $logged solve lines logged"
 

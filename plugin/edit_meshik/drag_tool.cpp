@@ -267,7 +267,10 @@ void DragTool::postSolve(bool quick, Clock::time_point event_time) {
 
 void DragTool::applyFinishedPose() {
   if (!worker_) return;
-  if (std::optional<SolveOutcome> outcome = worker_->take()) applyOutcome(*outcome);
+  if (std::optional<SolveOutcome> outcome = worker_->take()) {
+    applyOutcome(*outcome);
+    worker_->poseWritten();  // the next solve may start: it no longer competes with the write
+  }
 }
 
 void DragTool::finishPendingSolve() {
@@ -292,28 +295,30 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
     return;
   }
   if (outcome.result.vertices.size() != 3 * rest->cm.vert.size()) return;  // the layer changed under us
-  const Clock::time_point applying = Clock::now();
-  writePose(*rest, outcome.result.vertices, outcome.normals);
+  const PoseWriteTimes write = writePose(*rest, outcome.result.vertices, outcome.normals);
   last_weights_ = outcome.result.weights;
   inverted_ = outcome.result.inverted_triangles;
   const double latency_ms = millisecondsSince(outcome.request.first_event);
-  const double waiting_ms = std::chrono::duration<double, std::milli>(applying - outcome.finished).count();
-  const double buffers_ms = millisecondsSince(applying);
+  const double waiting_ms = std::chrono::duration<double, std::milli>(write.start - outcome.finished).count();
   if (drag_ || rotation_) {
     timings_.latency.add(latency_ms);
     timings_.solve.add(outcome.solve_ms);
-    timings_.overhead.add(waiting_ms + buffers_ms);
+    timings_.overhead.add(waiting_ms + write.writing_ms + write.backlog_ms);
     timings_.waiting.add(waiting_ms);
-    timings_.writing.add(buffers_ms);
+    timings_.writing.add(write.writing_ms);
+    timings_.buffers.add(write.buffers_ms);
+    timings_.backlog.add(write.backlog_ms);
   }
   if (panel_) {
     panel_->showError(QString());
     panel_->showPose(outcome.result.weights, outcome.result.iterations, outcome.solve_ms,
                      static_cast<int>(outcome.result.inverted_triangles.size()));
   }
-  log(QStringLiteral("%11 %1 (%2 moves%3), %4 iterations, factor %5 ms, solve %6 ms, "
-                     "latency %7 ms (%9 ms waiting for the GUI thread, %10 ms writing the layer and "
-                     "its GL buffers), %8 inverted triangles")
+  log(QStringLiteral("%1 %2 (%3 moves%4), %5 iterations, factor %6 ms, solve %7 ms, latency %8 ms (%9 ms waiting "
+                     "for the GUI thread, %10 ms writing the layer and its GL buffers: copy %11 ms, MeshLab's GL "
+                     "buffers %12 ms (%13), selection overlay %14 ms; renderer backlog %15 ms), %16 inverted "
+                     "triangles")
+          .arg(converged_solve_ ? "converged solve" : "solve")
           .arg(outcome.number)
           .arg(outcome.request.moves)
           .arg(outcome.refactored ? ", new handle set" : "")
@@ -321,35 +326,63 @@ void DragTool::applyOutcome(const SolveOutcome& outcome) {
           .arg(outcome.factor_ms, 0, 'f', 1)
           .arg(outcome.solve_ms, 0, 'f', 1)
           .arg(latency_ms, 0, 'f', 1)
-          .arg(outcome.result.inverted_triangles.size())
           .arg(waiting_ms, 0, 'f', 1)
-          .arg(buffers_ms, 0, 'f', 1)
-          .arg(converged_solve_ ? "converged solve" : "solve"));
+          .arg(write.writing_ms, 0, 'f', 1)
+          .arg(write.copy_ms, 0, 'f', 2)
+          .arg(write.buffers_ms, 0, 'f', 2)
+          .arg(write.replicated ? "flat shading: 3 vertices per triangle" : "indexed")
+          .arg(write.selection_ms, 0, 'f', 2)
+          .arg(write.backlog_ms, 0, 'f', 2)
+          .arg(outcome.result.inverted_triangles.size()));
 }
 
-void DragTool::writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals) {
+PoseWriteTimes DragTool::writePose(MeshModel& rest, const std::vector<double>& positions,
+                                   const SurfaceNormals& normals) {
   if (normals.vertices.size() != positions.size() || normals.faces.size() != 3 * rest.cm.face.size()) {
     // Not from the worker (undo, redo, reset): computed here, off the path of a drag.
-    writePose(rest, positions, surfaceNormals(positions, plugin::triangleIndices(rest)));
-    return;
+    return writePose(rest, positions, surfaceNormals(positions, plugin::triangleIndices(rest)));
   }
+  const Clock::time_point start = Clock::now();
   last_written_ = plugin::setVertexPositionsAndNormals(rest, positions, normals.faces, normals.vertices);
-  refreshBuffers(rest);
+  const double copy_ms = millisecondsSince(start);
+  PoseWriteTimes times = refreshBuffers(rest);
+  times.start = start;
+  times.copy_ms = copy_ms;
+  times.writing_ms = millisecondsSince(start) - times.backlog_ms;
+  return times;
 }
 
-void DragTool::refreshBuffers(MeshModel& layer) {
+PoseWriteTimes DragTool::refreshBuffers(MeshModel& layer) {
+  PoseWriteTimes times;
+  if (area_ != nullptr) {  // what the view's renderer still had to draw (its own GL context)
+    const Clock::time_point finishing = Clock::now();
+    area_->makeCurrent();
+    glFinish();
+    times.backlog_ms = millisecondsSince(finishing);
+  }
   if (shared_ != nullptr) {
+    const Clock::time_point uploading = Clock::now();
     MLRenderingData::RendAtts attributes;
     attributes[MLRenderingData::ATT_NAMES::ATT_VERTPOSITION] = true;
     attributes[MLRenderingData::ATT_NAMES::ATT_VERTNORMAL] = true;
     attributes[MLRenderingData::ATT_NAMES::ATT_FACENORMAL] = true;
     shared_->meshAttributesUpdated(layer.id(), false, attributes);
     shared_->manageBuffers(layer.id());
+    times.buffers_ms = millisecondsSince(uploading);
+    if (area_ != nullptr) {  // face normals in the view's solid mode: MeshLab replicates 3 vertices per triangle
+      MLRenderingData view;
+      MLRenderingData::RendAtts solid;
+      shared_->getRenderInfoPerMeshView(layer.id(), area_->context(), view);
+      times.replicated = view.get(MLRenderingData::PR_SOLID, solid) && solid[MLRenderingData::ATT_NAMES::ATT_FACENORMAL];
+    }
   }
   if (area_ != nullptr) {
+    const Clock::time_point selecting = Clock::now();
     if (layer_has_selection_) area_->updateSelection(layer.id(), true, true);  // the overlay's own copy
+    times.selection_ms = millisecondsSince(selecting);
     area_->update();
   }
+  return times;
 }
 
 void DragTool::poseToNewLayer() {

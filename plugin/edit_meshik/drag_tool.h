@@ -23,6 +23,7 @@
 
 #include <QDockWidget>
 #include <QObject>
+#include <QPoint>
 #include <QPointer>
 #include <QUndoStack>
 
@@ -109,10 +110,13 @@ class DragTool : public QObject, public EditTool {
   void finishPendingSolve();
   // Solves the current targets to convergence and waits for the pose (the end of a drag or turn).
   void convergeNow();
-  void refreshBuffers(MeshModel& layer);
+  // Tells MeshLab the layer's positions and normals changed, uploads its GL buffers, refreshes a
+  // selection overlay and schedules a repaint; returns the times of these parts (not the copy).
+  PoseWriteTimes refreshBuffers(MeshModel& layer);
   // Writes #V by 3 `positions` and their `normals` (the worker's; computed here when empty)
-  // into the rest layer, keeps them as last_written_ and updates the GL buffers.
-  void writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals);
+  // into the rest layer, keeps them as last_written_ and updates the GL buffers; returns when it
+  // began and what each part took.
+  PoseWriteTimes writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals);
   std::pair<double, double> glPosition(const QMouseEvent* event) const;
   std::pair<double, double> cursorGlPosition() const;
 
@@ -185,6 +189,10 @@ class DragTool : public QObject, public EditTool {
   bool converged_solve_ = false;  // the solve being applied is the end of a drag's (for the log)
   bool layer_has_selection_ = false;  // its selection overlay must follow the vertices
   SolveWorker::Counts drag_start_counts_;
+  // Where the newest mouse move of a drag or turn was, on the screen: Qt folds moves queued while
+  // the GUI thread is busy into the newest, so the drag ends where the cursor did even when fewer
+  // moves arrive than the mouse made.
+  QPoint last_move_screen_;
   DragTimings timings_;
   QPointer<QDockWidget> dock_;
   QPointer<DragDock> panel_;

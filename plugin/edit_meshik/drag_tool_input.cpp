@@ -124,6 +124,7 @@ void DragTool::mousePressEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
       active_group_ = groups_[grabbed];
       step_before_ = captureState();
       drag_.emplace(*projection_, targets_, grabbed, groupMembers(groups_, active_group_), x, y);
+      last_move_screen_ = event->globalPos();
       timings_.clear();
       drag_start_counts_ = worker_->counts();
       area->update();
@@ -152,6 +153,7 @@ void DragTool::mouseMoveEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
 void DragTool::moveHandles(const QMouseEvent* event) {
   const Clock::time_point now = Clock::now();
   const auto [x, y] = glPosition(event);
+  last_move_screen_ = event->globalPos();
   if (rotation_ && rotation_dragging_) {
     if (!typed_degrees_.isEmpty()) return;  // typed degrees rule the turn
     targets_ = rotation_->targetsTurnedBy(rotation_->dialDegrees(x, y));
@@ -189,19 +191,24 @@ void DragTool::mouseReleaseEvent(QMouseEvent* event, MeshModel&, GLArea* area) {
   drag_.reset();
   convergeNow();
   const QString summary =
-      QStringLiteral("%1 moves, %2 solves (%3 coalesced, %4 superseded), latency median %5 ms, max %6 ms; "
-                     "solve median %7 ms, overhead median %8 ms (waiting for the GUI thread %9 ms, writing the "
-                     "layer and GL buffers %10 ms)")
+      QStringLiteral("%1 moves, %2 solves (%3 coalesced, %4 superseded), the last move at screen %5 %6; latency "
+                     "median %7 ms, max %8 ms; solve median %9 ms, overhead median %10 ms (waiting for the GUI "
+                     "thread %11 ms, writing the layer and GL buffers %12 ms, of it MeshLab's GL buffers %13 ms; "
+                     "renderer backlog %14 ms)")
           .arg(counts.moves - drag_start_counts_.moves)
           .arg(counts.solves - drag_start_counts_.solves)
           .arg(counts.coalesced - drag_start_counts_.coalesced)
           .arg(counts.superseded - drag_start_counts_.superseded)
+          .arg(last_move_screen_.x())
+          .arg(last_move_screen_.y())
           .arg(timings_.latency.median(), 0, 'f', 1)
           .arg(timings_.latency.max(), 0, 'f', 1)
           .arg(timings_.solve.median(), 0, 'f', 1)
           .arg(timings_.overhead.median(), 0, 'f', 2)
           .arg(timings_.waiting.median(), 0, 'f', 2)
-          .arg(timings_.writing.median(), 0, 'f', 2);
+          .arg(timings_.writing.median(), 0, 'f', 2)
+          .arg(timings_.buffers.median(), 0, 'f', 2)
+          .arg(timings_.backlog.median(), 0, 'f', 2);
   log(summary);
   if (panel_) panel_->showLatency(summary);
   pushStep(std::move(step_before_), QStringLiteral("drag group %1").arg(group));

@@ -57,8 +57,18 @@ std::optional<SolveOutcome> SolveWorker::take() {
   return outcome;
 }
 
+void SolveWorker::poseWritten() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    awaiting_write_ = false;
+  }
+  wake_.notify_one();
+}
+
 void SolveWorker::waitIdle() {
   std::unique_lock<std::mutex> lock(mutex_);
+  awaiting_write_ = false;
+  wake_.notify_one();
   idle_.wait(lock, [this] { return (!pending_ && !running_) || stop_; });
 }
 
@@ -70,7 +80,7 @@ SolveWorker::Counts SolveWorker::counts() const {
 void SolveWorker::run() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    wake_.wait(lock, [this] { return pending_.has_value() || stop_; });
+    wake_.wait(lock, [this] { return (pending_.has_value() && !awaiting_write_) || stop_; });
     if (stop_) return;
     SolveRequest request = std::move(*pending_);
     pending_.reset();
@@ -82,6 +92,7 @@ void SolveWorker::run() {
     outcome.number = static_cast<std::uint64_t>(++counts_.solves);
     if (finished_) ++counts_.superseded;
     finished_ = std::move(outcome);
+    awaiting_write_ = true;
     if (!pending_) idle_.notify_all();
     if (notify_) {
       lock.unlock();

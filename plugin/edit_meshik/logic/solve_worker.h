@@ -10,7 +10,10 @@
 // handle set), since the iteration limit is a solver option. Finished poses are handed back
 // through take() on the GUI thread, which alone writes the mesh; `notify` (called on the
 // worker's thread) tells it there is one. Given the triangles, the worker also computes each
-// pose's normals, so that the GUI thread only copies them.
+// pose's normals, so that the GUI thread only copies them. The worker starts no solve while a
+// finished pose waits to be written (from its hand-over to poseWritten()): the GUI thread's write
+// into the layer and MeshLab's GL buffers then has the cores to itself instead of sharing them with
+// the next solve (on 2 cores, that sharing made the elephant's write 3-8x slower).
 #pragma once
 
 #include "surface_normals.h"
@@ -75,7 +78,12 @@ class SolveWorker {
   // one still waited replaces it (counted in Counts::superseded: the GUI was busy drawing).
   std::optional<SolveOutcome> take();
 
-  // Blocks until no request waits or runs (for tests and for saving a finished pose).
+  // Called by the GUI thread once it has written the outcome it took: the worker may start the
+  // next solve.
+  void poseWritten();
+
+  // Blocks until no request waits or runs (for tests and for saving a finished pose); lets the
+  // worker go on without poseWritten() (the caller is not writing while it waits).
   void waitIdle();
 
   // Mouse moves posted, requests solved, requests replaced by a newer one before they started,
@@ -105,6 +113,7 @@ class SolveWorker {
   std::optional<SolveRequest> pending_;
   std::optional<SolveOutcome> finished_;
   bool running_ = false;
+  bool awaiting_write_ = false;  // a finished outcome was handed over and is not written yet
   bool stop_ = false;
   Counts counts_;
 

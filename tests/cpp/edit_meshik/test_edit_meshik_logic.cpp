@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <thread>
 
 namespace {
 
@@ -187,6 +188,37 @@ TEST(SolveWorker, MovesPostedDuringASolveCoalesceIntoOneRequestWithTheNewestTarg
   EXPECT_FALSE(outcome->refactored) << "a move never refactors";
   EXPECT_TRUE(outcome->error.empty()) << outcome->error;
   EXPECT_FALSE(worker.take().has_value()) << "the older outcome was dropped, the newest taken";
+}
+
+TEST(SolveWorker, NoSolveStartsWhileTheTakenPoseIsBeingWritten) {
+  TubeScene scene;
+  std::mutex mutex;
+  std::condition_variable changed;
+  int finished = 0;
+  meshik::edit::SolveWorker worker(scene.examples, {}, [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    ++finished;
+    changed.notify_all();
+  });
+  const auto wait_for_solves = [&](int count) {
+    std::unique_lock<std::mutex> lock(mutex);
+    return changed.wait_for(lock, std::chrono::seconds(60), [&] { return finished >= count; });
+  };
+  worker.post(scene.request(0.1));
+  ASSERT_TRUE(wait_for_solves(1));
+  const auto first = worker.take();  // the GUI thread takes the pose and writes it...
+  ASSERT_TRUE(first && first->error.empty());
+  const meshik::edit::SolveRequest next = scene.request(0.2);
+  worker.post(next);  // ...while a move arrives
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the tube solves in about 1 ms
+  EXPECT_EQ(worker.counts().solves, 1) << "no solve competes with the write";
+  EXPECT_FALSE(worker.take().has_value());
+  worker.poseWritten();
+  ASSERT_TRUE(wait_for_solves(2));
+  const auto second = worker.take();
+  ASSERT_TRUE(second && second->error.empty());
+  EXPECT_EQ(second->request.targets, next.targets);
+  EXPECT_EQ(worker.counts().superseded, 0);
 }
 
 TEST(SolveWorker, ANewHandleSetRefactorsAndTheSolveMatchesTheSolverWarmStarted) {
