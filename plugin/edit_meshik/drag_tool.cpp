@@ -149,6 +149,7 @@ bool DragTool::startEdit(MeshDocument& document, GLArea* area, MLSceneGLSharedDa
     report(error.what());
     return true;  // the dock shows the error; nothing else happens until the user fixes the layers
   }
+  shadeSmoothWhilePosing(*rest);
   rebuildExamples();
   area->setFocus();  // the tool's keys (P, S, R, Ctrl+Z...) work at once, before any click on the view
   area->update();
@@ -233,6 +234,7 @@ void DragTool::suspend() {
   example_set_.reset();
   timings_.clear();
   converged_solve_ = false;
+  restoreArtistShading();
   if (area_) area_->removeEventFilter(this);
   delete dock_.data();  // deletes the panel too (null when MeshLab's window already deleted it)
   dock_ = nullptr;

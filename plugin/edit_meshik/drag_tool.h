@@ -117,6 +117,10 @@ class DragTool : public QObject, public EditTool {
   // into the rest layer, keeps them as last_written_ and updates the GL buffers; returns when it
   // began and what each part took.
   PoseWriteTimes writePose(MeshModel& rest, const std::vector<double>& positions, const SurfaceNormals& normals);
+  // A flat-shaded rest layer of many triangles is drawn smooth while the tool runs (see
+  // drag_tool_shading.cpp), and gets the artist's shading back at the end.
+  void shadeSmoothWhilePosing(MeshModel& rest);
+  void restoreArtistShading();
   std::pair<double, double> glPosition(const QMouseEvent* event) const;
   std::pair<double, double> cursorGlPosition() const;
 
@@ -174,6 +178,7 @@ class DragTool : public QObject, public EditTool {
   std::vector<int> triangles_;  // #F by 3: the rest layer's, for the pose's normals
   std::shared_ptr<const ExampleSet> example_set_;
   std::unique_ptr<SolveWorker> worker_;
+  std::optional<MLRenderingData> artist_shading_;  // the rest layer's view before it was drawn smooth
   std::optional<std::vector<double>> next_start_weights_;  // the next solve's warm start (after undo, reset)
   std::optional<ScreenProjection> projection_;  // the view of the last frame drawn
   std::optional<Click> pressed_;  // a press on no handle: a click, or the start of a rectangle
