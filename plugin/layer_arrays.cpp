@@ -1,7 +1,6 @@
 #include "layer_arrays.h"
 
 #include <common/mlexception.h>
-#include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/allocate.h>
 
 #include <algorithm>
@@ -51,10 +50,11 @@ void setVertexPositions(MeshModel& layer, const std::vector<double>& positions) 
   layer.updateBoxAndNormals();
 }
 
-std::vector<double> setVertexPositionsAndNormals(MeshModel& layer, const std::vector<double>& positions,
-                                                 const std::vector<double>& face_normals,
-                                                 const std::vector<double>& vertex_normals) {
-  std::vector<double> held(positions.size());
+void setVertexPositionsAndNormals(MeshModel& layer, const std::vector<double>& positions,
+                                  const std::vector<double>& face_normals, const std::vector<double>& vertex_normals,
+                                  std::vector<double>& held) {
+  held.resize(positions.size());
+  vcg::Box3<Scalarm> box;  // grown in the same pass (UpdateBounding::Box would read every vertex again)
   for (size_t i = 0; i < layer.cm.vert.size(); ++i) {
     CVertexO& v = layer.cm.vert[i];
     for (int k = 0; k < 3; ++k) {
@@ -62,11 +62,11 @@ std::vector<double> setVertexPositionsAndNormals(MeshModel& layer, const std::ve
       v.N()[k] = static_cast<Scalarm>(vertex_normals[3 * i + k]);
       held[3 * i + k] = static_cast<double>(v.cP()[k]);
     }
+    box.Add(v.cP());
   }
   for (size_t f = 0; f < layer.cm.face.size(); ++f)
     for (int k = 0; k < 3; ++k) layer.cm.face[f].N()[k] = static_cast<Scalarm>(face_normals[3 * f + k]);
-  vcg::tri::UpdateBounding<CMeshO>::Box(layer.cm);
-  return held;
+  layer.cm.bbox = box;
 }
 
 namespace {

@@ -32,11 +32,12 @@ void setVertexPositions(MeshModel& layer, const std::vector<double>& positions);
 
 // Overwrites the layer's vertex positions with #V by 3 row-major `positions`, its face normals
 // with #F by 3 `face_normals` and its vertex normals with #V by 3 `vertex_normals` (computed
-// elsewhere, say on a worker thread), and updates its bounding box. Returns the #V by 3 positions
-// as the layer now holds them (rounded to MeshLab's scalar), without reading the layer back.
-std::vector<double> setVertexPositionsAndNormals(MeshModel& layer, const std::vector<double>& positions,
-                                                 const std::vector<double>& face_normals,
-                                                 const std::vector<double>& vertex_normals);
+// elsewhere, say on a worker thread), and sets its bounding box. Fills `held` with the #V by 3
+// positions as the layer now holds them (rounded to MeshLab's scalar), without reading the layer
+// back (its storage reused: no allocation per pose).
+void setVertexPositionsAndNormals(MeshModel& layer, const std::vector<double>& positions,
+                                  const std::vector<double>& face_normals, const std::vector<double>& vertex_normals,
+                                  std::vector<double>& held);
 
 // Prefix of the labels of the layers the MeshIK filters create ("MeshIK pose of ...").
 // Such layers are never taken as example poses by default.

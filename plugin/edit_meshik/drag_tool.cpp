@@ -345,7 +345,7 @@ PoseWriteTimes DragTool::writePose(MeshModel& rest, const std::vector<double>& p
     return writePose(rest, positions, surfaceNormals(positions, plugin::triangleIndices(rest)));
   }
   const Clock::time_point start = Clock::now();
-  last_written_ = plugin::setVertexPositionsAndNormals(rest, positions, normals.faces, normals.vertices);
+  plugin::setVertexPositionsAndNormals(rest, positions, normals.faces, normals.vertices, last_written_);
   const double copy_ms = millisecondsSince(start);
   PoseWriteTimes times = refreshBuffers(rest);
   times.start = start;
