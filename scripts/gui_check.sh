@@ -11,8 +11,8 @@
 # Then the edit tool "MeshIK: Drag to Pose" (edit plugin edit_meshik), on the sample and, with
 # ../shared/data present, on the horse and the elephant (rest + 4 examples each): started from
 # the Edit menu by keyboard, 3 handles added by clicking on the mesh, one dragged in 24 mouse-move
-# steps, the constraint file and the posed layer saved through the tool's file dialogs; checked: a solve logged per move (or
-# folded into a later one), the layer moved, the saved pose equals meshik.Solver on the saved file's
+# steps, the constraint file and the posed layer saved through the tool's file dialogs; checked: the drag's last move is
+# where the cursor ended (Qt folds moves, none is lost otherwise), a solve logged per move (or folded into a later one), the layer moved, the saved pose equals meshik.Solver on the saved file's
 # handles and targets (scripts/gui_check_drag.py), MeshLab answers the Edit menu afterwards, no
 # error dialog or warning. The drag latency (mouse-move event to updated GL buffers, median and
 # max, solve and overhead medians) is printed. On the sample, scripts/gui_check_artist.sh then drives
