@@ -58,7 +58,9 @@ double numberParameter(const RichParameterList& parameters, const char* name) {
   const double value = parameters.getFloat(name);
   if (value != kFromFile && !(std::isfinite(value) && value >= 0.0))
     throw MLException(
-        QStringLiteral("%1: expected -1 (from the constraint file) or a finite number >= 0, got %2").arg(name).arg(value));
+        QStringLiteral("%1: expected -1 (from the constraint file) or a finite number >= 0, got %2")
+            .arg(name)
+            .arg(value));
   return value;
 }
 
@@ -120,7 +122,8 @@ ChosenSolverOptions chooseSolverOptions(const RichParameterList& parameters, con
   options.feature_space = log.choose(
       "feature space", feature_space == kFromFileEntry,
       feature_space == 1 ? FeatureSpace::kLinear : FeatureSpace::kNonlinear, file.feature_space,
-      defaults.feature_space, [](FeatureSpace f) { return QString(f == FeatureSpace::kLinear ? "linear" : "nonlinear"); });
+      defaults.feature_space,
+      [](FeatureSpace f) { return QString(f == FeatureSpace::kLinear ? "linear" : "nonlinear"); });
   options.blend = log.choose("blend", blend == kFromFileEntry, blend == 1 ? Blend::kFree : Blend::kAffine, file.blend,
                              defaults.blend, [](Blend b) { return QString(b == Blend::kFree ? "free" : "affine"); });
   options.regions =
