@@ -44,7 +44,7 @@ std::vector<double> parseWeights(const QString& text, size_t num_examples) {
 
 RichParameterList blendParameters(const MeshDocument& document) {
   RichParameterList parameters;
-  addExampleParameters(parameters);
+  addExampleParameters(parameters, false);
   parameters.addParam(RichString(
       "weights", defaultWeights(document), "Weights",
       "One weight per example layer, in the order of the example layers (layer order, or the order of "

@@ -2,6 +2,8 @@
 
 #include "meshik/constraints/constraint_file.h"
 
+#include <algorithm>
+#include <climits>
 #include <string>
 
 namespace meshik::plugin {
@@ -26,6 +28,24 @@ std::vector<int> vertexRegions(const meshik::constraints::ConstraintDocument& do
   return regions;
 }
 
+// The solver options `document` sets (the reader has checked their values).
+FileSolverOptions fileSolverOptions(const meshik::constraints::ConstraintDocument& document) {
+  FileSolverOptions options;
+  if (document.feature_space)
+    options.feature_space = *document.feature_space == "linear" ? FeatureSpace::kLinear : FeatureSpace::kNonlinear;
+  if (document.blend) options.blend = *document.blend == "free" ? Blend::kFree : Blend::kAffine;
+  if (document.regions && document.regions->groups.empty())
+    options.regions = document.regions->automatic
+                          ? kAutomaticRegions
+                          : static_cast<int>(std::min<std::int64_t>(document.regions->count, INT_MAX));
+  options.region_smoothness = document.region_smoothness;
+  options.weight_regularization = document.weight_regularization;
+  options.handle_stiffness = document.handle_stiffness;
+  if (document.max_iterations) options.max_iterations = static_cast<int>(*document.max_iterations);
+  options.tolerance = document.tolerance;
+  return options;
+}
+
 }  // namespace
 
 ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, const double* rest_vertices,
@@ -41,6 +61,7 @@ ConstraintFrame readConstraintFrame(const QString& path, const QString& frame, c
   const std::size_t last_frame = 3 * resolved.handles.size() * static_cast<std::size_t>(chosen);
   result.targets.assign(resolved.targets.begin() + static_cast<std::ptrdiff_t>(last_frame), resolved.targets.end());
   result.vertex_regions = vertexRegions(document, num_vertices);
+  result.options = fileSolverOptions(document);
   return result;
 }
 

@@ -1,14 +1,28 @@
 // One frame of a MeshIK constraint file for the plugin, read through the constraint-file library
-// (cpp_core/constraints, the pipeline's reader too). The file's "rest", "examples" and solver
-// options are not used, but for regions given as vertex groups (no parameter can give those): the
-// plugin takes the meshes from MeshLab layers and the other options from its parameters.
+// (cpp_core/constraints, the pipeline's reader too), with the solver options the file sets. The
+// file's "rest" and "examples" are not used: the plugin takes the meshes from MeshLab layers.
 #pragma once
+
+#include <meshik/meshik.h>
 
 #include <QString>
 
+#include <optional>
 #include <vector>
 
 namespace meshik::plugin {
+
+// The solver options a constraint file sets at its top level; each is empty when the file leaves it out.
+struct FileSolverOptions {
+  std::optional<FeatureSpace> feature_space;     // "feature_space"
+  std::optional<Blend> blend;                    // "blend"
+  std::optional<int> regions;                    // "regions" as a count, or kAutomaticRegions for "auto"
+  std::optional<double> region_smoothness;       // "region_smoothness"
+  std::optional<double> weight_regularization;   // "weight_regularization"
+  std::optional<double> handle_stiffness;        // "handle_stiffness"
+  std::optional<int> max_iterations;             // "max_iterations"
+  std::optional<double> tolerance;               // "tolerance"
+};
 
 // The handles and their targets in one frame.
 struct ConstraintFrame {
@@ -19,6 +33,7 @@ struct ConstraintFrame {
   // #V region ids of the file's "regions" vertex groups (in the file's order; -1: in no group),
   // or empty when the file gives no vertex groups.
   std::vector<int> vertex_regions;
+  FileSolverOptions options;  // the file's solver options (regions given as vertex groups: above)
 };
 
 // Reads the constraint file at `path` and resolves frame `frame` against the rest mesh.

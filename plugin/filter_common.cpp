@@ -10,18 +10,24 @@
 
 namespace meshik::plugin {
 
-void addExampleParameters(RichParameterList& parameters) {
+void addExampleParameters(RichParameterList& parameters, bool from_constraint_file) {
   parameters.addParam(RichString(
       "examplelayers", "", "Example layers",
       "Which layers are the example poses. Empty: every layer other than the current (rest) layer with "
       "the rest layer's vertex and triangle counts, except the target layer and the layers MeshIK "
       "created (labels starting with \"MeshIK \"). Otherwise a comma-separated list of layer ids or "
       "layer names, e.g. \"1, 2, 5\". Every example must have the rest layer's triangles."));
-  parameters.addParam(
-      RichEnum("featurespace", 0, QStringList{"Nonlinear", "Linear"}, "Feature space",
-               "How the examples' deformation gradients are combined. Nonlinear (the paper's): rotations "
-               "and stretches are blended separately, so large rotations interpolate without shrinking. "
-               "Linear: the gradients are blended linearly (faster, fine for small deformations)."));
+  QStringList choices{"Nonlinear", "Linear"};
+  QString tooltip =
+      "How the examples' deformation gradients are combined. Nonlinear (the paper's): rotations and "
+      "stretches are blended separately, so large rotations interpolate without shrinking. Linear: the "
+      "gradients are blended linearly (faster, fine for small deformations).";
+  if (from_constraint_file) {
+    choices << "From the constraint file";
+    tooltip += " From the constraint file (the default): the file's \"feature_space\" when the handle targets "
+               "come from a constraint file that sets it, else Nonlinear.";
+  }
+  parameters.addParam(RichEnum("featurespace", from_constraint_file ? 2 : 0, choices, "Feature space", tooltip));
 }
 
 FeatureSpace featureSpace(const RichParameterList& parameters) {

@@ -17,10 +17,12 @@ namespace meshik::plugin {
 // Writes one line to MeshLab's log (the GUI's log window and stdout as "LOG: ...").
 using Logger = std::function<void(const QString&)>;
 
-// Adds the parameters "examplelayers" (which layers are the example poses) and "featurespace".
-void addExampleParameters(RichParameterList& parameters);
+// Adds the parameters "examplelayers" (which layers are the example poses) and "featurespace"
+// (Nonlinear, Linear; with `from_constraint_file` a third entry, "From the constraint file", the
+// default: pose_options.h reads it).
+void addExampleParameters(RichParameterList& parameters, bool from_constraint_file);
 
-// The feature space chosen in the "featurespace" parameter.
+// The feature space chosen in the "featurespace" parameter (Nonlinear or Linear).
 FeatureSpace featureSpace(const RichParameterList& parameters);
 
 // The rest layer (the document's current layer) and its example layers, read into arrays.

@@ -1,6 +1,5 @@
 #include "handle_targets.h"
 
-#include "constraint_file.h"
 #include "layer_arrays.h"
 
 #include <common/mlexception.h>
@@ -30,8 +29,9 @@ void addHandleTargetParameters(RichParameterList& parameters, const MeshDocument
   parameters.addParam(RichFileOpen(
       "constraintfile", "", QStringList{"*.json"}, "Constraint file",
       "With targets from a constraint file: a MeshIK constraint file (JSON, format \"meshik-constraints\", "
-      "version 1; see the MeshIK README). Its handle groups are resolved on the rest layer; its rest and "
-      "example file names and solver options are not used."));
+      "version 1; see the MeshIK README). Its handle groups are resolved on the rest layer; its solver "
+      "options are used where a parameter says \"from the constraint file\" (the defaults); its rest and "
+      "example file names are not used."));
   parameters.addParam(RichString(
       "frame", "0", "Frame",
       "With targets from a constraint file: the frame to pose, by name (e.g. \"0003\") or else by "
@@ -101,6 +101,7 @@ HandleTargets constraintFileTargets(const RichParameterList& parameters, const M
                       .arg(frame.index)
                       .arg(QFileInfo(path).fileName());
   result.vertex_regions = frame.vertex_regions;
+  result.file_options = frame.options;
   const std::vector<int> selected = selectedVertices(rest);
   if (selected.empty()) {
     result.handles = frame.handles;
@@ -132,7 +133,7 @@ void sortByVertex(HandleTargets& handle_targets) {
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](size_t a, size_t b) { return handle_targets.handles[a] < handle_targets.handles[b]; });
-  HandleTargets sorted{{}, {}, handle_targets.source, handle_targets.vertex_regions};
+  HandleTargets sorted{{}, {}, handle_targets.source, handle_targets.vertex_regions, handle_targets.file_options};
   for (size_t i : order) {
     sorted.handles.push_back(handle_targets.handles[i]);
     sorted.targets.insert(sorted.targets.end(), handle_targets.targets.begin() + 3 * i,

@@ -1,6 +1,7 @@
 #include "pose_filter.h"
 
 #include "handle_targets.h"
+#include "pose_options.h"
 #include "progress.h"
 #include "meshik/thread_limit.h"
 
@@ -10,40 +11,15 @@
 #include <common/plugins/interfaces/filter_plugin.h>
 
 #include <Eigen/Core>
-#include <cmath>
 #include <QElapsedTimer>
 
 namespace meshik::plugin {
 
 RichParameterList poseParameters(const MeshDocument& document) {
   RichParameterList parameters;
-  addExampleParameters(parameters);
+  addExampleParameters(parameters, true);
   addHandleTargetParameters(parameters, document);
-  parameters.addParam(
-      RichInt("iterations", 30, "Maximum iterations",
-              "Gauss-Newton stops after this many iterations, or earlier when the energy no longer decreases "
-              "(relative change below 1e-10)."));
-  parameters.addParam(RichFloat(
-      "weightregularization", 0.0f, "Weight regularization",
-      "k in the energy |G'x - (M(w) + c)|^2 + k |w|^2: values above 0 pull the example weights towards "
-      "0 (the rest pose) when the handles leave the span of the examples."));
-  parameters.addParam(RichEnum(
-      "blend", 0, QStringList{"Affine", "Free"}, "Stretch blend",
-      "How the examples' stretches combine. Affine (default): tied to the rest pose, I + sum w_i (S_i - I). "
-      "Free: the paper's own sum w_i S_i, not tied to the rest pose."));
-  parameters.addParam(RichInt(
-      "regions", 1, "Regions",
-      "Spatially varying weights: 1 = one weight vector for the whole mesh; N >= 2 = one per region, N regions "
-      "clustered from how the examples deform (so legs can take one example's stride and the body another's), "
-      "blended smoothly across their borders; 0 = the count chosen from the examples. A constraint file whose "
-      "regions are vertex groups gives one region per group instead (and one for the vertices in none)."));
-  parameters.addParam(RichFloat(
-      "regionsmoothness", 0.01f, "Region smoothness",
-      "Pull between neighbouring regions' weights (with few handles it makes them one global vector)."));
-  parameters.addParam(RichFloat(
-      "handlestiffness", 0.0f, "Handle stiffness",
-      "0 = hard handles (met exactly); > 0 = soft handles, each pulled towards its target with this stiffness. "
-      "A constraint file's \"handle_stiffness\" is not read here: give the same value to replay its poses."));
+  addSolverOptionParameters(parameters);
   parameters.addParam(RichBool(
       "inplace", false, "Pose in place",
       "Write the pose into the current (rest) layer instead of a new layer \"MeshIK pose of ...\". The new "
@@ -66,28 +42,14 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
   const HandleTargets handle_targets = handleTargets(parameters, *layers.rest, layers.arrays.rest, target);
   if (callback) callback(2, "MeshIK: layers read");
 
-  SolverOptions options;
-  options.feature_space = featureSpace(parameters);
-  options.max_iterations = parameters.getInt("iterations");
-  options.weight_regularization = parameters.getFloat("weightregularization");
+  ChosenSolverOptions chosen = chooseSolverOptions(parameters, handle_targets.file_options);
+  SolverOptions& options = chosen.options;
   options.threads = parameters.getInt("threads");
-  options.blend = parameters.getEnum("blend") == 1 ? Blend::kFree : Blend::kAffine;
-  const int regions = parameters.getInt("regions");
-  if (regions < 0) throw MLException("regions: expected 0 (automatic) or a count of at least 1");
-  options.regions = regions == 0 ? kAutomaticRegions : regions;
   options.vertex_regions = handle_targets.vertex_regions;
-  options.region_smoothness = parameters.getFloat("regionsmoothness");
-  if (!(options.region_smoothness >= 0.0)) throw MLException("regionsmoothness: expected a number >= 0");
-  options.handle_stiffness = parameters.getFloat("handlestiffness");
-  if (!(std::isfinite(options.handle_stiffness) && options.handle_stiffness >= 0.0))
-    throw MLException("handlestiffness: expected a finite number >= 0");
-  if (options.max_iterations < 1) throw MLException("iterations: expected at least 1");
   if (options.threads < 0 || options.threads > kMaxThreads)
     throw MLException(QString("threads: expected 0 (all cores) or a count from 1 to %1, got %2")
                           .arg(kMaxThreads)
                           .arg(options.threads));
-  if (!(options.weight_regularization >= 0.0))
-    throw MLException("weightregularization: expected a number >= 0");
 
   QElapsedTimer clock;
   clock.start();
@@ -107,6 +69,7 @@ std::map<std::string, QVariant> applyPose(const RichParameterList& parameters, M
           .arg(handle_targets.handles.size())
           .arg(handle_targets.source)
           .arg(layers.examples.size()));
+  log(QStringLiteral("MeshIK pose: options %1").arg(chosen.description));
   if (!options.vertex_regions.empty())
     log(QStringLiteral("MeshIK pose: %1 regions from the constraint file's vertex groups").arg(solver->num_regions()));
   log(QStringLiteral("MeshIK pose: weights %1, %2 iterations%3, residual %4")

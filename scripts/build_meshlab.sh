@@ -44,7 +44,8 @@ case $what in
     ;;
   gui)
     nice -n 10 cmake --build "$build" -j "$jobs" >&2
-    cmake --install "$build" >/dev/null
+    # --prefix: a build tree copied from another checkout keeps that checkout's prefix in its cache.
+    cmake --install "$build" --prefix "$prefix" >/dev/null
     echo "$prefix/bin/meshlab"
     ;;
   *) echo "build_meshlab: WHAT must be common or gui, not '$what'" >&2; exit 2 ;;

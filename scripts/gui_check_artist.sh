@@ -1,6 +1,6 @@
 # Sourced by scripts/gui_check.sh (uses its start_meshlab, wait_log, shot, step, fail, ...): drives
 # what artists reach for in "MeshIK: Drag to Pose" on the sample, with one screenshot per feature
-# (<name>_group, _undo, _rotate, _keyframes, _mirror), and checks:
+# (<name>_group, _undo, _rotate, _keyframes, _mirror, _mirror_view), and checks:
 #   undo returns the exact earlier pose (bit for bit) and redo the exact later one;
 #   a turned group (R, typed 30 degrees, Return) is saved as a "rotate" target that reproduces the
 #   tool's pose in meshik.Solver (within 1e-6 of the diagonal);
@@ -8,7 +8,8 @@
 #   Esc during a drag puts the pose back exactly (and leaves the tool running);
 #   on the wings (drive_mirror_check): with Mirror X, a handle on the plane, a wing's group and its
 #   mirrored group, dragged and turned, give a pose symmetric about x = 0 within 1e-6 of the
-#   diagonal; the plane through a picked vertex goes through the clicked vertex.
+#   diagonal; the plane through a picked vertex goes through the clicked vertex; the view's vertical
+#   plane of the front view is x = 0 and gives a symmetric pose too (drive_mirror_view_check).
 
 # Saves the posed layer through the tool's dialog (key P) to $1; prints the logged weights.
 artist_save_pose() {
@@ -160,6 +161,30 @@ drive_artist_features() {
   stop_meshlab
 }
 
+# With a Mirror option on the wings: clicks the body (the second mesh point: a handle on the plane,
+# its own mirror) and a wing (the first: a handle whose partner, in group 3, lies across the plane);
+# $1: the plane's name in the log ("X", "view's vertical"). Sets wing_x, wing_y: the wing handle's
+# screen point.
+mirror_body_and_wing() {
+  local line
+  artist_click $(sed -n 2p <<<"$artist_points") "" 1 >/dev/null || fail "$artist: clicking the body added no handle"
+  wait_log "MeshIK drag: vertex [0-9]+ lies on the $1 plane: its own mirror" 5 >/dev/null ||
+    fail "$artist: the handle on the plane is not its own mirror (see $meshlab_log)"
+  line=$(artist_click $(sed -n 1p <<<"$artist_points") "" 2) || fail "$artist: clicking the wing added no handle"
+  read -r wing_x wing_y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
+  wait_log "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the $1 plane \\(group 3\\)" 5 >/dev/null ||
+    fail "$artist: no mirror partner for the wing handle (see $meshlab_log)"
+}
+
+# Saves the tool's pose to $out/$artist.ply and checks it symmetric about x = 0 (1e-6 of the diagonal).
+check_symmetric_pose() {
+  artist_save_pose "$out/${artist}.ply" >/dev/null
+  "$root/.venv/bin/python" "$root/scripts/gui_check_drag.py" symmetric "$out/${artist}.ply" 0 \
+    >"$out/${artist}_check.txt" 2>&1 ||
+    { cat "$out/${artist}_check.txt" >&2; fail "$artist: the mirrored pose is not symmetric"; }
+  step "$artist: $(tail -n 1 "$out/${artist}_check.txt")"
+}
+
 # On the wings sample (exactly symmetric about x = 0; its project $2): Mirror X through the centre,
 # a fixed handle on the plane, a group of two handles near one wing tip (click, ctrl+click) whose
 # partners form one mirrored group, a drag and a typed turn of that group; the pose is symmetric
@@ -167,17 +192,11 @@ drive_artist_features() {
 # places it through that vertex (logged: x = 0 on the body).
 drive_mirror_check() {
   artist=$1
-  local check=("$root/.venv/bin/python" "$root/scripts/gui_check_drag.py") line x y px py dx
+  local line px py dx
   step "$artist: mirror (the tool in MeshLab, on the symmetric wings)"
   artist_start "$2"
   artist_keys "MeshIK drag: mirror: X \\(plane x = centre\\)" m >/dev/null
-  artist_click $(sed -n 2p <<<"$artist_points") "" 1 >/dev/null || fail "$artist: clicking the body added no handle"
-  wait_log "MeshIK drag: vertex [0-9]+ lies on the X plane: its own mirror" 5 >/dev/null ||
-    fail "$artist: the handle on the plane is not its own mirror (see $meshlab_log)"
-  line=$(artist_click $(sed -n 1p <<<"$artist_points") "" 2) || fail "$artist: clicking the wing added no handle"
-  read -r x y < <(sed -E 's/.* at screen ([0-9-]+) ([0-9-]+).*/\1 \2/' <<<"$line")
-  wait_log "MeshIK drag: vertex [0-9]+ mirrors vertex [0-9]+ across the X plane \\(group 3\\)" 5 >/dev/null ||
-    fail "$artist: no mirror partner for the wing handle (see $meshlab_log)"
+  mirror_body_and_wing X
   read -r px py <<<"$(sed -n 1p <<<"$artist_points")"
   for dx in 30 40 50 -30; do
     artist_click $((px + dx)) "$py" ctrl 4 >/dev/null && break
@@ -187,9 +206,9 @@ drive_mirror_check() {
     grep -qE "MeshIK drag: 4 handles, .*\\(group 2\\)" "$meshlab_log" ||
     fail "$artist: ctrl+click did not grow the wing's group and its mirrored group (see $meshlab_log)"
   shot "${artist}_handles"
-  artist_drag "$x" "$y" 12 2 -5 release
+  artist_drag "$wing_x" "$wing_y" 12 2 -5 release
   wait_log "MeshIK drag: drag group 2 " 30 >/dev/null || fail "$artist: the drag was not recorded"
-  artist_cursor="$x $((y - 60))"
+  artist_cursor="$wing_x $((wing_y - 60))"
   artist_keys "MeshIK drag: turning group 2" r >/dev/null
   artist_cursor=
   xdotool key 2 5
@@ -197,10 +216,7 @@ drive_mirror_check() {
   artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
   sleep 0.5
   shot "$artist"
-  artist_save_pose "$out/${artist}.ply" >/dev/null
-  "${check[@]}" symmetric "$out/${artist}.ply" 0 >"$out/${artist}_check.txt" 2>&1 ||
-    { cat "$out/${artist}_check.txt" >&2; fail "$artist: the mirrored pose is not symmetric"; }
-  step "$artist: $(tail -n 1 "$out/${artist}_check.txt")"
+  check_symmetric_pose
 
   # The plane through a picked vertex (M three more times: X through a picked vertex): the click on
   # the body places it (x = 0 there), the next click on a wing gets its partner across it.
@@ -212,6 +228,31 @@ drive_mirror_check() {
   "$root/.venv/bin/python" -c "import sys; sys.exit(abs(float(sys.argv[1])) > 1e-9)" \
     "$(sed -E 's/.*mirror plane x = ([^,]*),.*/\1/' <<<"$line")" || fail "$artist: the picked plane is not x = 0: $line"
   shot "${artist}_picked_plane"
+  ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
+  stop_meshlab
+  drive_mirror_view_check "${artist}_view" "$2"
+}
+
+# The view's vertical plane (M seven times from off: through the centre), in a fresh session on the
+# wings ($2) seen from the front: the logged plane normal is x (to 1e-9), a handle on the body is its
+# own mirror, a wing handle gets its partner, and a drag gives a pose symmetric about x = 0.
+drive_mirror_view_check() {
+  artist=$1
+  local line
+  step "$artist: mirror across the view's vertical plane (the tool in MeshLab, on the wings)"
+  artist_start "$2"
+  artist_keys "MeshIK drag: mirror: View's vertical plane \\(through the centre\\)" m m m m m m m >/dev/null
+  line=$(wait_log "MeshIK drag: mirror plane normal \\(.*\\): the view's vertical plane" 5) ||
+    fail "$artist: choosing the view's vertical plane logged no plane (see $meshlab_log)"
+  "$root/.venv/bin/python" -c "import sys; n = [float(v) for v in sys.argv[1].split(',')]; \
+sys.exit(abs(abs(n[0]) - 1) > 1e-9 or abs(n[1]) > 1e-9 or abs(n[2]) > 1e-9)" \
+    "$(sed -E 's/.*plane normal \(([^)]*)\).*/\1/' <<<"$line")" || fail "$artist: the front view's plane is not x: $line"
+  mirror_body_and_wing "view's vertical"
+  artist_drag "$wing_x" "$wing_y" 12 2 -5 release
+  wait_log "MeshIK drag: drag group 2 " 30 >/dev/null || fail "$artist: the drag was not recorded"
+  sleep 0.5
+  shot "$artist"
+  check_symmetric_pose
   ! grep -q "LOG: 1 MeshIK drag" "$meshlab_log" || fail "$artist: the tool warned: $(grep "LOG: 1 MeshIK drag" "$meshlab_log" | head -n 1)"
   stop_meshlab
 }

@@ -125,10 +125,13 @@ DragDock::DragDock(QWidget* parent) : QWidget(parent) {
   mirror_ = new QComboBox(this);
   mirror_->addItems({tr("Off"), tr("X (plane x = centre)"), tr("Y (plane y = centre)"), tr("Z (plane z = centre)"),
                      tr("X (plane through a picked vertex)"), tr("Y (plane through a picked vertex)"),
-                     tr("Z (plane through a picked vertex)")});
+                     tr("Z (plane through a picked vertex)"), tr("View's vertical plane (through the centre)"),
+                     tr("View's vertical plane (through a picked vertex)")});
   mirror_->setToolTip(tr("New handles get a partner at the vertex nearest their mirror image (within 1% of the "
                          "diagonal); moves and turns are mirrored. With a picked plane, the next click places "
-                         "the plane through the clicked vertex"));
+                         "the plane through the clicked vertex. The view's vertical plane contains the view "
+                         "direction and the view's up vector (it swaps left and right on the screen); it is "
+                         "taken from the view when chosen and stays fixed when the view turns"));
   form->addRow(tr("Mirror"), mirror_);
   layout->addLayout(form);
   connect(feature_space_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DragDock::optionsChanged);
@@ -186,9 +189,24 @@ void DragDock::setWeightNames(const std::vector<QString>& names) { weight_names_
 
 bool DragDock::linearFeatureSpace() const { return feature_space_->currentIndex() == 1; }
 
-int DragDock::mirrorAxis() const { return mirror_->currentIndex() == 0 ? -1 : (mirror_->currentIndex() - 1) % 3; }
+// The "Mirror" entries: 0 off; 1-3 X, Y, Z through the centre; 4-6 through a picked vertex; 7, 8 the
+// view's vertical plane through the centre, through a picked vertex.
+int DragDock::mirrorPlaneKind() const {
+  const int index = mirror_->currentIndex();
+  if (index <= 0) return kNoMirror;
+  return index >= 7 ? kViewMirror : (index - 1) % 3;
+}
 
-bool DragDock::mirrorThroughPickedVertex() const { return mirror_->currentIndex() > 3; }
+QString DragDock::mirrorPlaneName() const {
+  const int kind = mirrorPlaneKind();
+  if (kind == kNoMirror) return QString();
+  return kind == kViewMirror ? QStringLiteral("view's vertical") : QString(QChar("XYZ"[kind]));
+}
+
+bool DragDock::mirrorThroughPickedVertex() const {
+  const int index = mirror_->currentIndex();
+  return (index >= 4 && index <= 6) || index == 8;
+}
 
 QString DragDock::cycleMirror() {
   mirror_->setCurrentIndex((mirror_->currentIndex() + 1) % mirror_->count());

@@ -32,13 +32,19 @@ class DragDock : public QWidget {
   // The names of the #E weights the next showPose shows (the example layers' labels).
   void setWeightNames(const std::vector<QString>& names);
   bool linearFeatureSpace() const;
-  // The "Mirror" option: -1 off, else the axis (0, 1, 2) normal to the mirror plane.
-  int mirrorAxis() const;
+  // The "Mirror" option's plane: kNoMirror (off), 0, 1, 2 (the plane normal to X, Y, Z) or
+  // kViewMirror (the view's vertical plane, taken from the view when the option is chosen).
+  static constexpr int kNoMirror = -1;
+  static constexpr int kViewMirror = 3;
+  int mirrorPlaneKind() const;
+  // The plane's name for messages: "X", "Y", "Z" or "view's vertical" (empty when off).
+  QString mirrorPlaneName() const;
   // Whether the mirror plane goes through a vertex the user picks (else through the rest mesh's
   // centre).
   bool mirrorThroughPickedVertex() const;
   // Steps the "Mirror" option to the next choice (off, X, Y, Z through the centre, X, Y, Z through
-  // a picked vertex, off, ...); returns its text.
+  // a picked vertex, the view's vertical plane through the centre, through a picked vertex, off,
+  // ...); returns its text.
   QString cycleMirror();
   double weightRegularization() const;
   // The "Stretch blend" option: true for the paper's free weights, false for the affine space.

@@ -73,7 +73,7 @@ class DragTool : public QObject, public EditTool {
   void saveConstraintFile();
   void savePose();
   void poseToNewLayer();
-  void mirrorModeChanged();  // forgets a picked mirror plane
+  void mirrorModeChanged();  // forgets a picked mirror plane; the view plane comes from the current view
 
  private:
   struct Click {
@@ -167,7 +167,8 @@ class DragTool : public QObject, public EditTool {
   std::vector<double> last_weights_;    // #E weights of the pose in the layer (empty at rest)
   std::vector<int> inverted_;           // triangles the last pose turned inside out
   int active_group_ = 0;                // the group R turns and ctrl+click adds to
-  std::optional<MirrorPlane> picked_mirror_plane_;  // through a picked vertex (for its axis)
+  std::optional<MirrorPlane> picked_mirror_plane_;  // through a picked vertex (reset when the option changes)
+  std::optional<Direction> view_mirror_normal_;      // the view's vertical plane's, when that option was chosen
   QUndoStack history_;
   KeyframeList keyframes_;
 

@@ -31,9 +31,9 @@ QString DragTool::helpText() const {
         .arg(typed_degrees_.isEmpty() ? QString() : QStringLiteral(": %1 degrees").arg(typed_degrees_));
   }
   if (drag_) return QStringLiteral("<b>Moving group %1</b><br>release to apply, Esc cancels").arg(active_group_);
-  if (panel_ && panel_->mirrorAxis() >= 0 && !mirrorPlane())
-    return QStringLiteral("<b>Mirror plane</b>: click the vertex it goes through (normal to %1)")
-        .arg(QChar("XYZ"[panel_->mirrorAxis()]));
+  if (panel_ && panel_->mirrorPlaneKind() != DragDock::kNoMirror && !mirrorPlane())
+    return QStringLiteral("<b>Mirror plane</b>: click the vertex it goes through (the %1 plane)")
+        .arg(panel_->mirrorPlaneName());
   return QStringLiteral(
              "<b>Posing</b> (%1 handles, %2 undo steps, %3 frames)"
              "<br>click: handle (new group), ctrl+click: add to the group, shift+click: remove"

@@ -1,6 +1,7 @@
 // The tool's "Mirror" option: each new handle gets a partner at the vertex nearest its mirror
-// image, and every move and turn of a group is mirrored onto its partners. The plane goes through
-// the rest mesh's centre, or through a vertex the user clicks (the click after choosing it).
+// image, and every move and turn of a group is mirrored onto its partners. The plane is normal to
+// X, Y or Z, or the view's vertical plane (taken from the view when the option is chosen); it goes
+// through the rest mesh's centre, or through a vertex the user clicks (the click after choosing it).
 #include "drag_tool.h"
 
 #include "bounding_box.h"
@@ -13,31 +14,60 @@ namespace meshik::edit {
 namespace {
 
 constexpr double kMirrorTolerance = 0.01;  // of the rest mesh's bounding-box diagonal
-const char* const kAxes = "XYZ";
+
+// The normal of the plane chosen in `panel` (null or off: none): an axis, or `view_normal` for the
+// view's vertical plane (none while the view is not known).
+std::optional<Direction> chosenNormal(const DragDock* panel, const std::optional<Direction>& view_normal) {
+  const int kind = panel ? panel->mirrorPlaneKind() : DragDock::kNoMirror;
+  if (kind == DragDock::kNoMirror) return std::nullopt;
+  if (kind == DragDock::kViewMirror) return view_normal;
+  return axisNormal(kind);
+}
+
+// "x = 0.5" for a plane normal to an axis, else "(0.6, 0, 0.8) . p = 0.5".
+QString planeEquation(const MirrorPlane& plane) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (plane.normal == axisNormal(axis))
+      return QStringLiteral("%1 = %2").arg(QChar("xyz"[axis])).arg(plane.offset, 0, 'g', 9);
+  return QStringLiteral("(%1, %2, %3) . p = %4")
+      .arg(plane.normal[0], 0, 'g', 9)
+      .arg(plane.normal[1], 0, 'g', 9)
+      .arg(plane.normal[2], 0, 'g', 9)
+      .arg(plane.offset, 0, 'g', 9);
+}
 
 }  // namespace
 
 std::optional<MirrorPlane> DragTool::mirrorPlane() const {
-  const int axis = panel_ ? panel_->mirrorAxis() : -1;
-  if (axis < 0) return std::nullopt;
-  if (!panel_->mirrorThroughPickedVertex()) return MirrorPlane::throughCentre(rest_positions_, axis);
-  if (picked_mirror_plane_ && picked_mirror_plane_->axis == axis) return picked_mirror_plane_;
-  return std::nullopt;
+  const std::optional<Direction> normal = chosenNormal(panel_, view_mirror_normal_);
+  if (!normal) return std::nullopt;
+  if (!panel_->mirrorThroughPickedVertex()) return MirrorPlane::throughCentre(rest_positions_, *normal);
+  return picked_mirror_plane_;
 }
 
 void DragTool::mirrorModeChanged() {
   picked_mirror_plane_.reset();
+  view_mirror_normal_.reset();
+  if (panel_ && panel_->mirrorPlaneKind() == DragDock::kViewMirror) {
+    if (projection_) {
+      view_mirror_normal_ = viewVerticalNormal(projection_->modelview());
+      log(QStringLiteral("mirror plane normal (%1, %2, %3): the view's vertical plane, fixed until the option is "
+                         "chosen again")
+              .arg((*view_mirror_normal_)[0], 0, 'g', 9)
+              .arg((*view_mirror_normal_)[1], 0, 'g', 9)
+              .arg((*view_mirror_normal_)[2], 0, 'g', 9));
+    } else {
+      report("the view's vertical plane: the view is not drawn yet; choose the option again");
+    }
+  }
   if (area_) area_->update();  // the help line says whether a click picks the plane
 }
 
 bool DragTool::pickMirrorPlane(int vertex) {
-  const int axis = panel_ ? panel_->mirrorAxis() : -1;
-  if (axis < 0 || !panel_->mirrorThroughPickedVertex() || mirrorPlane()) return false;
-  picked_mirror_plane_ = MirrorPlane::throughPoint(&rest_positions_[3 * static_cast<size_t>(vertex)], axis);
-  log(QStringLiteral("mirror plane %1 = %2, through vertex %3")
-          .arg(QChar(kAxes[axis]).toLower())
-          .arg(picked_mirror_plane_->offset, 0, 'g', 9)
-          .arg(vertex));
+  const std::optional<Direction> normal = chosenNormal(panel_, view_mirror_normal_);
+  if (!normal || !panel_->mirrorThroughPickedVertex() || mirrorPlane()) return false;
+  picked_mirror_plane_ = MirrorPlane::throughPoint(&rest_positions_[3 * static_cast<size_t>(vertex)], *normal);
+  log(QStringLiteral("mirror plane %1, through vertex %2").arg(planeEquation(*picked_mirror_plane_)).arg(vertex));
   if (area_) area_->update();
   return true;
 }
@@ -53,11 +83,11 @@ void DragTool::addMirrorPartner() {
                           "across the %3 plane")
                .arg(vertex)
                .arg(kMirrorTolerance)
-               .arg(kAxes[plane->axis]));
+               .arg(panel_->mirrorPlaneName()));
     return;
   }
   if (partner == vertex) {
-    log(QStringLiteral("vertex %1 lies on the %2 plane: its own mirror").arg(vertex).arg(kAxes[plane->axis]));
+    log(QStringLiteral("vertex %1 lies on the %2 plane: its own mirror").arg(vertex).arg(panel_->mirrorPlaneName()));
     return;
   }
   const int newest = static_cast<int>(handles_.size()) - 1;
@@ -75,7 +105,7 @@ void DragTool::addMirrorPartner() {
   log(QStringLiteral("vertex %1 mirrors vertex %2 across the %3 plane (group %4)")
           .arg(partner)
           .arg(vertex)
-          .arg(kAxes[plane->axis])
+          .arg(panel_->mirrorPlaneName())
           .arg(groups_[std::find(handles_.begin(), handles_.end(), partner) - handles_.begin()]));
 }
 

@@ -6,15 +6,39 @@
 
 namespace meshik::edit {
 
-MirrorPlane MirrorPlane::throughCentre(const std::vector<double>& vertices, int axis) {
-  const BoundingBox box = boundingBox(vertices.data(), vertices.size() / 3);
-  return {axis, 0.5 * (box.low[axis] + box.high[axis])};
+namespace {
+
+double dot(const Direction& n, const double* p) { return n[0] * p[0] + n[1] * p[1] + n[2] * p[2]; }
+
+}  // namespace
+
+Direction axisNormal(int axis) {
+  Direction normal{0.0, 0.0, 0.0};
+  normal[axis] = 1.0;
+  return normal;
 }
 
-MirrorPlane MirrorPlane::throughPoint(const double* point, int axis) { return {axis, point[axis]}; }
+Direction viewVerticalNormal(const std::array<double, 16>& modelview) {
+  const Direction row{modelview[0], modelview[4], modelview[8]};  // column-major: row 0 of the 3x3 part
+  const double length = std::sqrt(dot(row, row.data()));
+  if (!(length > 0.0) || !std::isfinite(length)) return axisNormal(0);
+  return {row[0] / length, row[1] / length, row[2] / length};
+}
+
+MirrorPlane MirrorPlane::throughCentre(const std::vector<double>& vertices, const Direction& normal) {
+  const BoundingBox box = boundingBox(vertices.data(), vertices.size() / 3);
+  const double centre[3] = {0.5 * (box.low[0] + box.high[0]), 0.5 * (box.low[1] + box.high[1]),
+                            0.5 * (box.low[2] + box.high[2])};
+  return throughPoint(centre, normal);
+}
+
+MirrorPlane MirrorPlane::throughPoint(const double* point, const Direction& normal) {
+  return {normal, dot(normal, point)};
+}
 
 void MirrorPlane::reflect(const double* p, double* out) const {
-  for (int k = 0; k < 3; ++k) out[k] = k == axis ? 2.0 * offset - p[k] : p[k];
+  const double twice_distance = 2.0 * (dot(normal, p) - offset);
+  for (int k = 0; k < 3; ++k) out[k] = p[k] - twice_distance * normal[k];
 }
 
 int mirrorPartner(const std::vector<double>& rest, int vertex, const MirrorPlane& plane, double tolerance) {

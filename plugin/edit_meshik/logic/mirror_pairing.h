@@ -1,21 +1,35 @@
-// Symmetry for the tool's "Mirror" option: the mirror plane (normal to X, Y or Z, through the rest
-// mesh's bounding-box centre or through a picked vertex), the mirror image of a point, the rest
-// vertex that pairs with a handle (the one nearest its mirror image, within a tolerance), and the
-// group a new partner joins.
+// Symmetry for the tool's "Mirror" option: the mirror plane (normal to X, Y or Z, or the view's
+// vertical plane; through the rest mesh's bounding-box centre or through a picked vertex), the
+// mirror image of a point, the rest vertex that pairs with a handle (the one nearest its mirror
+// image, within a tolerance), and the group a new partner joins.
 #pragma once
 
+#include <array>
 #include <vector>
 
 namespace meshik::edit {
 
+using Direction = std::array<double, 3>;  // a unit vector in mesh coordinates
+
+// The normal of the plane x = c (axis 0), y = c (1) or z = c (2).
+Direction axisNormal(int axis);
+
+// The normal of the view's vertical plane: the plane that contains the view direction and the
+// view's up vector (the screen's vertical mid-plane when it goes through what the screen centres),
+// so that mirroring across it swaps left and right on the screen. `modelview`: 16 doubles,
+// column-major, from mesh to eye coordinates (GL's modelview with the mesh transform multiplied
+// in). Returns the screen's right direction in mesh coordinates: the normal of the planes of
+// constant eye x (row 0 of the matrix's linear part, normalised); (1, 0, 0) when that row is zero.
+Direction viewVerticalNormal(const std::array<double, 16>& modelview);
+
 struct MirrorPlane {
-  int axis = 0;         // 0, 1, 2: the plane x = offset, y = offset or z = offset
+  Direction normal{1.0, 0.0, 0.0};  // unit normal n: the plane is n . x = offset
   double offset = 0.0;
 
-  // The plane normal to `axis` through the bounding-box centre of #V by 3 row-major `vertices`.
-  static MirrorPlane throughCentre(const std::vector<double>& vertices, int axis);
-  // The plane normal to `axis` through `point` (3 doubles).
-  static MirrorPlane throughPoint(const double* point, int axis);
+  // The plane with unit normal `normal` through the bounding-box centre of #V by 3 row-major `vertices`.
+  static MirrorPlane throughCentre(const std::vector<double>& vertices, const Direction& normal);
+  // The plane with unit normal `normal` through `point` (3 doubles).
+  static MirrorPlane throughPoint(const double* point, const Direction& normal);
   // The mirror image of p (3 doubles) written to out (3 doubles; may be p).
   void reflect(const double* p, double* out) const;
 };

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 
 namespace meshik::edit {
@@ -26,11 +27,13 @@ std::array<double, 16> inverseOf(const std::array<double, 16>& matrix) {
 
 ScreenProjection::ScreenProjection() : viewport_{0.0, 0.0, 2.0, 2.0} {
   matrix_ = toArray(Matrix4::Identity());
+  modelview_ = matrix_;
   inverse_ = matrix_;
 }
 
 ScreenProjection::ScreenProjection(const double* projection, const double* modelview, const int* viewport)
     : viewport_{double(viewport[0]), double(viewport[1]), double(viewport[2]), double(viewport[3])} {
+  std::copy(modelview, modelview + 16, modelview_.begin());
   matrix_ = toArray(Eigen::Map<const Matrix4>(projection) * Eigen::Map<const Matrix4>(modelview));
   inverse_ = inverseOf(matrix_);
 }

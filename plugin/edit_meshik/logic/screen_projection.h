@@ -31,7 +31,11 @@ class ScreenProjection {
   // Returns false (and leaves `out` alone) when the map cannot be inverted there.
   bool unproject(const WindowPoint& w, double* out) const;
 
+  // The modelview it was made with (mesh to eye coordinates, column-major; identity by default).
+  const std::array<double, 16>& modelview() const { return modelview_; }
+
  private:
+  std::array<double, 16> modelview_;
   std::array<double, 16> matrix_;   // projection * modelview, column-major
   std::array<double, 16> inverse_;  // its inverse, column-major (zero when singular)
   std::array<double, 4> viewport_;  // x, y, width, height

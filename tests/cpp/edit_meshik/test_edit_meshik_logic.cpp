@@ -17,6 +17,7 @@
 #include "vertex_picking.h"
 #include "view_plane_drag.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -501,7 +502,7 @@ TEST(ConstraintFramesWriter, ATurnedGroupIsWrittenAsARotationThatResolvesToItsTa
 // nearest vertex to the mirror image within the tolerance; one without a partner gets -1.
 TEST(MirrorPairing, PairsEachVertexWithTheNearestToItsImageWithinTheTolerance) {
   const std::vector<double> rest = {0, 0, 0, 2, 0, 0, 0.5, 1, 0, 1.52, 1, 0, 1, 3, 0, 0.2, 5, 0};
-  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughCentre(rest, 0);
+  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughCentre(rest, meshik::edit::axisNormal(0));
   EXPECT_DOUBLE_EQ(plane.offset, 1.0);
   EXPECT_EQ(meshik::edit::mirrorPartner(rest, 0, plane, 1e-9), 1);
   EXPECT_EQ(meshik::edit::mirrorPartner(rest, 1, plane, 1e-9), 0);
@@ -513,7 +514,7 @@ TEST(MirrorPairing, PairsEachVertexWithTheNearestToItsImageWithinTheTolerance) {
   plane.reflect(&rest[6], image);
   EXPECT_DOUBLE_EQ(image[0], 1.5);
   EXPECT_DOUBLE_EQ(image[1], 1.0);
-  const meshik::edit::MirrorPlane y_plane = meshik::edit::MirrorPlane::throughCentre(rest, 1);
+  const meshik::edit::MirrorPlane y_plane = meshik::edit::MirrorPlane::throughCentre(rest, meshik::edit::axisNormal(1));
   EXPECT_DOUBLE_EQ(y_plane.offset, 2.5);
 }
 
@@ -615,7 +616,7 @@ TEST(LatencyStats, MedianAndMax) {
 // mirrors its handle's group, unless that is the handle's own group (a handle on the plane).
 TEST(MirrorPairing, APickedPlaneGoesThroughThePointAndPartnersJoinTheMirroredGroup) {
   const double point[3] = {0.25, -1.0, 3.0};
-  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughPoint(point, 1);
+  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughPoint(point, meshik::edit::axisNormal(1));
   double image[3];
   const double p[3] = {1.0, 2.0, 3.0};
   plane.reflect(p, image);
@@ -629,4 +630,37 @@ TEST(MirrorPairing, APickedPlaneGoesThroughThePointAndPartnersJoinTheMirroredGro
   // A group whose other handle lies on the plane (its own mirror, in its own group): a new group.
   const std::vector<int> on_plane_groups{1, 1, 1}, on_plane_mirrors{10, -1, -1};
   EXPECT_EQ(meshik::edit::partnerGroup(handles, on_plane_groups, on_plane_mirrors, 2), -1);
+}
+
+// The view's vertical plane from a turned, scaled view (as MeshLab's trackball makes one): mirroring
+// across it through a point c swaps left and right on the screen about c (orthographic view: the
+// image of p is drawn at 2 c_x - p_x, at p's height and depth); the default view gives plane x.
+TEST(MirrorPairing, TheViewsVerticalPlaneSwapsLeftAndRightOnTheScreen) {
+  const Eigen::Affine3d view = Eigen::Translation3d(0.3, -0.2, -5.0) * Eigen::Scaling(2.5) *
+                         Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX()) *
+                         Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0.2, 1.0, 0.4).normalized());
+  const double l = -4, r = 4, b = -3, t = 3, n = 0.1, f = 100;
+  const double orthographic[16] = {2 / (r - l), 0, 0, 0, 0, 2 / (t - b), 0, 0, 0, 0, -2 / (f - n), 0,
+                                   -(r + l) / (r - l), -(t + b) / (t - b), -(f + n) / (f - n), 1};
+  const int viewport[4] = {0, 0, 800, 600};
+  const ScreenProjection screen(orthographic, view.matrix().data(), viewport);
+  const meshik::edit::Direction normal = meshik::edit::viewVerticalNormal(screen.modelview());
+  EXPECT_NEAR(std::hypot(normal[0], normal[1], normal[2]), 1.0, 1e-15);
+  const double c[3] = {0.4, 0.1, -0.3}, p[3] = {-0.5, 0.8, 0.6};
+  const meshik::edit::MirrorPlane plane = meshik::edit::MirrorPlane::throughPoint(c, normal);
+  double image[3];
+  plane.reflect(p, image);
+  const WindowPoint wc = screen.project(c), wp = screen.project(p), wi = screen.project(image);
+  EXPECT_GT(std::abs(wp.x - wc.x), 10.0) << "p is off the plane on the screen";
+  EXPECT_NEAR(wi.x, 2 * wc.x - wp.x, 1e-9);
+  EXPECT_NEAR(wi.y, wp.y, 1e-9);
+  EXPECT_NEAR(wi.depth, wp.depth, 1e-12);
+
+  const double centred[16] = {1.7, 0, 0, 0, 0, 1.7, 0, 0, 0, 0, 1.7, 0, 0, 0, -5, 1};
+  const meshik::edit::Direction x =
+      meshik::edit::viewVerticalNormal(ScreenProjection(orthographic, centred, viewport).modelview());
+  EXPECT_EQ(x, meshik::edit::axisNormal(0));
+  const std::vector<double> rest = {-1, 0, 0, 1, 0, 0, 0, 2, 0};
+  EXPECT_EQ(meshik::edit::MirrorPlane::throughCentre(rest, x).offset, 0.0);
+  EXPECT_EQ(meshik::edit::mirrorPartner(rest, 0, meshik::edit::MirrorPlane::throughCentre(rest, x), 1e-12), 1);
 }
