@@ -371,12 +371,7 @@ PoseWriteTimes DragTool::refreshBuffers(MeshModel& layer) {
     shared_->meshAttributesUpdated(layer.id(), false, attributes);
     shared_->manageBuffers(layer.id());
     times.buffers_ms = millisecondsSince(uploading);
-    if (area_ != nullptr) {  // face normals in the view's solid mode: MeshLab replicates 3 vertices per triangle
-      MLRenderingData view;
-      MLRenderingData::RendAtts solid;
-      shared_->getRenderInfoPerMeshView(layer.id(), area_->context(), view);
-      times.replicated = view.get(MLRenderingData::PR_SOLID, solid) && solid[MLRenderingData::ATT_NAMES::ATT_FACENORMAL];
-    }
+    times.replicated = drawnFlat(layer);  // face normals: MeshLab uploads 3 vertices per triangle
   }
   if (area_ != nullptr) {
     const Clock::time_point selecting = Clock::now();

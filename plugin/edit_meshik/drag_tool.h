@@ -121,6 +121,9 @@ class DragTool : public QObject, public EditTool {
   // drag_tool_shading.cpp), and gets the artist's shading back at the end.
   void shadeSmoothWhilePosing(MeshModel& rest);
   void restoreArtistShading();
+  // How the view draws `layer` (empty without a view), and whether it draws it flat (face normals).
+  MLRenderingData viewOf(const MeshModel& layer) const;
+  bool drawnFlat(const MeshModel& layer) const;
   std::pair<double, double> glPosition(const QMouseEvent* event) const;
   std::pair<double, double> cursorGlPosition() const;
 

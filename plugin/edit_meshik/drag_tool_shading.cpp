@@ -17,14 +17,18 @@ namespace {
 // From this many triangles on, a flat-shaded rest layer is drawn smooth while posing.
 constexpr int kSmoothShadingTriangles = 50000;
 
-// Whether `view` draws its solid mode with face normals (flat), and the view `smooth` when it does:
-// the same with vertex normals instead.
-bool flatSolid(const MLRenderingData& view, MLRenderingData& smooth) {
+// Whether `view` draws its solid mode with face normals (flat shading).
+bool flatSolid(const MLRenderingData& view) {
   MLRenderingData::RendAtts solid;
-  if (!view.get(MLRenderingData::PR_SOLID, solid) || !solid[MLRenderingData::ATT_NAMES::ATT_FACENORMAL]) return false;
+  return view.get(MLRenderingData::PR_SOLID, solid) && solid[MLRenderingData::ATT_NAMES::ATT_FACENORMAL];
+}
+
+// `view` with its solid mode drawn with vertex normals instead of face normals (smooth shading).
+MLRenderingData smoothSolid(const MLRenderingData& view) {
+  MLRenderingData smooth(view);
   smooth.set(MLRenderingData::PR_SOLID, MLRenderingData::ATT_NAMES::ATT_VERTNORMAL, true);
   smooth.set(MLRenderingData::PR_SOLID, MLRenderingData::ATT_NAMES::ATT_FACENORMAL, false);
-  return true;
+  return smooth;
 }
 
 // Whether the solid modes of `a` and `b` draw the same normals (vertex and face).
@@ -39,14 +43,20 @@ bool sameSolidNormals(const MLRenderingData& a, const MLRenderingData& b) {
 
 }  // namespace
 
+MLRenderingData DragTool::viewOf(const MeshModel& layer) const {
+  MLRenderingData view;
+  if (shared_ != nullptr && area_ != nullptr) shared_->getRenderInfoPerMeshView(layer.id(), area_->context(), view);
+  return view;
+}
+
+bool DragTool::drawnFlat(const MeshModel& layer) const { return flatSolid(viewOf(layer)); }
+
 void DragTool::shadeSmoothWhilePosing(MeshModel& rest) {
   if (shared_ == nullptr || area_ == nullptr || artist_shading_ || rest.cm.fn < kSmoothShadingTriangles) return;
-  MLRenderingData view;
-  shared_->getRenderInfoPerMeshView(rest.id(), area_->context(), view);
-  MLRenderingData smooth(view);
-  if (!flatSolid(view, smooth)) return;
+  const MLRenderingData view = viewOf(rest);
+  if (!flatSolid(view)) return;
   artist_shading_.emplace(view);
-  shared_->setRenderingDataPerMeshView(rest.id(), area_->context(), smooth);
+  shared_->setRenderingDataPerMeshView(rest.id(), area_->context(), smoothSolid(view));
   shared_->manageBuffers(rest.id());
   log(QStringLiteral("%1 drawn smooth while posing (flat shading uploads 3 vertices per triangle to the GPU for "
                      "every pose; the flat shading comes back when the tool ends)")
@@ -56,15 +66,11 @@ void DragTool::shadeSmoothWhilePosing(MeshModel& rest) {
 void DragTool::restoreArtistShading() {
   if (!artist_shading_) return;
   MeshModel* rest = restLayer();
-  if (rest != nullptr && shared_ != nullptr && area_ != nullptr) {
-    MLRenderingData now, smooth(*artist_shading_);
-    shared_->getRenderInfoPerMeshView(rest->id(), area_->context(), now);
-    flatSolid(*artist_shading_, smooth);
-    if (sameSolidNormals(now, smooth)) {  // not changed by the artist meanwhile
-      shared_->setRenderingDataPerMeshView(rest->id(), area_->context(), *artist_shading_);
-      shared_->manageBuffers(rest->id());
-      area_->update();
-    }
+  if (rest != nullptr && shared_ != nullptr && area_ != nullptr &&
+      sameSolidNormals(viewOf(*rest), smoothSolid(*artist_shading_))) {  // not changed by the artist meanwhile
+    shared_->setRenderingDataPerMeshView(rest->id(), area_->context(), *artist_shading_);
+    shared_->manageBuffers(rest->id());
+    area_->update();
   }
   artist_shading_.reset();
 }
