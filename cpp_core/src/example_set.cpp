@@ -138,8 +138,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
   // Only the in-plane gradients are read after this: the plane bases live on in the features,
   // the inverse frames nowhere (120 bytes per triangle).
-  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
-  impl.frames.frame_inverse = std::vector<double>();
+  impl.frames.plane_basis = PageArray<double>();  // move-assigned: the memory is freed
+  impl.frames.frame_inverse = PageArray<double>();
   // Nor the examples (their copies in the internal order) or the adjacency.
   example_pointers.clear();
   internal_examples = std::vector<std::vector<double>>();
