@@ -53,8 +53,8 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <typename T>
-size_t bytes_of(const std::vector<T>& v) {
+template <typename T, typename Allocator>
+size_t bytes_of(const std::vector<T, Allocator>& v) {
   return v.capacity() * sizeof(T);
 }
 

@@ -1,6 +1,7 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <future>
 #include <numeric>
 
@@ -97,54 +98,88 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   for (int j : order.triangle_order)
     for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
   impl.triangle_of_internal = std::move(order.triangle_order);
-  std::vector<std::vector<double>> internal_examples;
-  std::vector<const double*> example_pointers;
-  for (const double* e : examples) {
-    internal_examples.push_back(impl.to_internal(e));
-    example_pointers.push_back(internal_examples.back().data());
-  }
-  clock.lap("locality order");
   if (threads < 0 || threads > kMaxThreads)
     throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
                      std::to_string(threads));
+  const int team = thread_count(threads);
+  // The examples in the internal order, copied on the team (one example per thread at a time; an
+  // allocation failure is rethrown after the loop).
+  const int num_examples = impl.num_examples;
+  std::vector<std::vector<double>> internal_examples(num_examples);
+  std::vector<std::exception_ptr> copy_failure(num_examples);
+#pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
+  for (int i = 0; i < num_examples; ++i) {
+    try {
+      internal_examples[i] = impl.to_internal(examples[i]);
+    } catch (...) {
+      copy_failure[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& failure : copy_failure)
+    if (failure) std::rethrow_exception(failure);
+  std::vector<const double*> example_pointers;
+  for (const std::vector<double>& e : internal_examples) example_pointers.push_back(e.data());
+  clock.lap("locality order");
   const int* triangles = impl.triangles.data();
-  impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
-  impl.system_row_of_vertex.assign(rest.num_vertices, -1);
-  int system_rows = 0;
-  for (int v = 0; v < rest.num_vertices; ++v)
-    if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
-  // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the pattern
-  // and an analysis of it (ordering and symbolic factorization: serial, about 0.6 s at 1M
-  // triangles). The analysis needs the pattern only: with more than one thread it runs on its own
-  // beside the frames and the features. It writes system_analysis alone, and is waited for below
-  // (or, should anything throw first, by the future's destructor, before `built_pattern` goes).
+  // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the system's
+  // rows (the vertices of the components), its pattern and an analysis of it (ordering and
+  // symbolic factorization: serial, about 0.6 s at 1M triangles). These need the triangles only:
+  // with more than one thread they run on a thread of their own beside the frames and the
+  // features, the rows and pattern announced by `rows_ready` (waited for before the centroids),
+  // the analysis after them. They write components, system_row_of_vertex, built_pattern and
+  // system_analysis alone; the analysis is waited for below (or, should anything throw first,
+  // by the future's destructor, before what it uses goes).
   const bool cached = share_cached_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
   CscMatrix built_pattern;
-  if (!cached)
-    built_pattern = eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
+  const auto number_rows = [&impl, &built_pattern, &rest, triangles, cached] {
+    impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
+    impl.system_row_of_vertex.assign(rest.num_vertices, -1);
+    int system_rows = 0;
+    for (int v = 0; v < rest.num_vertices; ++v)
+      if (impl.components.component_of_vertex[v] >= 0) impl.system_row_of_vertex[v] = system_rows++;
+    if (!cached)
+      built_pattern = eliminated_lower_pattern(triangles, rest.num_triangles, impl.system_row_of_vertex, system_rows);
+  };
   const CscMatrix& pattern = cached ? impl.system_analysis.analyzed_pattern() : built_pattern;
   const auto analyze = [&impl, &pattern] {
     if (pattern.rows > 0) impl.system_analysis.analyze(pattern);
   };
+  std::promise<void> rows_ready;
+  std::future<void> rows = rows_ready.get_future();
   std::future<void> analysis;
-  if (!cached && thread_count(threads) > 1) analysis = std::async(std::launch::async, analyze);
+  if (!cached && team > 1) {
+    analysis = std::async(std::launch::async, [&number_rows, &analyze, &rows_ready] {
+      try {
+        number_rows();
+      } catch (...) {
+        rows_ready.set_exception(std::current_exception());
+        return;
+      }
+      rows_ready.set_value();
+      analyze();
+    });
+  } else {
+    number_rows();
+    rows_ready.set_value();
+  }
   clock.lap("system pattern");
-  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, thread_count(threads));
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team);
   TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
   clock.lap("topology and frames");
-  compute_centroids(impl, example_pointers);
-  clock.lap("centroids");
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
   // Only the in-plane gradients are read after this: the plane bases live on in the features,
   // the inverse frames nowhere (120 bytes per triangle).
-  impl.frames.plane_basis = std::vector<double>();  // move-assigned: the memory is freed
-  impl.frames.frame_inverse = std::vector<double>();
-  // Nor the examples (their copies in the internal order) or the adjacency.
+  impl.frames.plane_basis = PageArray<double>();  // move-assigned: the memory is freed
+  impl.frames.frame_inverse = PageArray<double>();
+  adjacency = TriangleAdjacency();  // nor the adjacency
+  clock.lap("features");
+  rows.get();  // the components and the system's rows and pattern
+  compute_centroids(impl, example_pointers);
+  // Nor the examples (their copies in the internal order).
   example_pointers.clear();
   internal_examples = std::vector<std::vector<double>>();
-  adjacency = TriangleAdjacency();
-  clock.lap("features");
+  clock.lap("centroids");
   // Only the values are kept here: the analysis holds the pattern.
   impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern);
   clock.lap("normal matrix");

@@ -68,10 +68,16 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
   // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
   const int group_size = std::max(1, std::min(team, k));
-  std::vector<Eigen::Matrix3d> rotations;
-  assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
-  std::vector<std::vector<Eigen::Vector3d>> logs(group_size, std::vector<Eigen::Vector3d>(m));
-  std::vector<std::vector<double>> distances(group_size, std::vector<double>(adjacency.neighbour.size()));
+  PageArray<Eigen::Matrix3d> rotations;
+  assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()), team);
+  // Each log is written before it is read, and Eigen's vectors are not initialized: the pages are
+  // first touched by the team's writes below.
+  std::vector<std::vector<Eigen::Vector3d>> logs(group_size);
+  std::vector<PageArray<double>> distances(group_size);
+  for (int g = 0; g < group_size; ++g) {
+    logs[g].resize(m);
+    assign_on_huge_pages(distances[g], adjacency.neighbour.size(), 0.0, team);
+  }
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   for (int group = 0; group < k; group += group_size) {
     const int members = std::min(group_size, k - group);
@@ -138,17 +144,17 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
   features.num_batches = (m + kLanes - 1) / kLanes;
   features.precision = precision;
   const size_t slots = static_cast<size_t>(features.num_batches) * kLanes;
+  const int team = thread_count(threads);
   visit_feature_values(features, [&](auto& values) {
     using Stored = typename std::decay_t<decltype(values)>::Value;
-    assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0));
-    assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0));
+    assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0), team);
+    assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0), team);
   });
-  assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0);
+  assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0, team);
   for (int j = 0; j < m; ++j)
     store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
                j % kLanes);
 
-  const int team = thread_count(threads);
   if (precision == FeaturePrecision::kSingle)
     fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
   else

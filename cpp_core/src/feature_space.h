@@ -15,6 +15,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "huge_pages.h"
 #include "meshik/meshik.h"
 #include "mesh_topology.h"
 #include "triangle_frames.h"
@@ -34,9 +35,9 @@ struct FeatureValues {
   using Value = Stored;
   // Batch b, example i: 9 rows of kLanes values, phi_ij (3) then D_ij (3 by 2 row-major):
   // entry ((b #E + i) 9 + row) kLanes + lane for triangle j = b kLanes + lane.
-  std::vector<Stored> nonlinear;
+  PageArray<Stored> nonlinear;
   // Batch b, example i: 6 rows of kLanes, L_ij (3 by 2 row-major): ((b #E + i) 6 + row) kLanes + lane.
-  std::vector<Stored> linear;
+  PageArray<Stored> linear;
 };
 
 // Mixed precision, by the rule of issue 13: "Mixed precision is allowed wherever the pose, energy
@@ -54,7 +55,7 @@ struct ExampleFeatures {
   FeatureValues<float> single;  // the values when precision is kSingle (empty otherwise)
   FeatureValues<double> full;   // the values when precision is kDouble (empty otherwise)
   // Batch b: 6 rows of kLanes, U_j (3 by 2 row-major): (b 6 + row) kLanes + lane.
-  std::vector<double> plane_basis;
+  PageArray<double> plane_basis;
 };
 
 // features.single or features.full (Stored float or double), as the Features' constness.

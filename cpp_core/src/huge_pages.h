@@ -4,10 +4,15 @@
 // a sixth of its time on the elephant. With 2 MiB pages there are 512 times fewer. The factor's
 // values (301 MB at 1.08M triangles) and a pose's work buffers (121 MB there) too: on this
 // machine 301 MB took about 0.5 s on 4 KiB pages and 0.1 s on 2 MiB pages (under load).
+// The first touch is the kernel's zeroing of each page, on the thread that touches it: arrays
+// written by a parallel pass after they are sized (PageArray) are first touched by the whole team.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -32,25 +37,56 @@ inline void advise_huge_pages(void* data, size_t bytes) {
 #endif
 }
 
-// v = n copies of value, in new storage advised onto huge pages before it is first written.
+// std::allocator whose construct() without a value default-initializes: resize() leaves new
+// entries of a trivial type unwritten (their pages untouched) for a parallel pass to write first.
 template <typename T>
-void assign_on_huge_pages(std::vector<T>& v, size_t n, const T& value) {
-  std::vector<T> fresh;
+struct DefaultInitAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() noexcept = default;
+  template <typename U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// An array of large storage whose pages are first touched by a team (assign_on_huge_pages below).
+template <typename T>
+using PageArray = std::vector<T, DefaultInitAllocator<T>>;
+
+// v = n copies of value in new storage advised onto huge pages, written (so first touched, the
+// kernel's zeroing included) by `team` threads in equal contiguous parts; below 64 Ki entries by
+// the caller alone. The same contents for any team.
+template <typename T>
+void assign_on_huge_pages(PageArray<T>& v, size_t n, const T& value, int team) {
+  PageArray<T> fresh;
   fresh.reserve(n);
   advise_huge_pages(fresh.data(), n * sizeof(T));
-  fresh.assign(n, value);
+  fresh.resize(n);  // unwritten
+  T* data = fresh.data();
+  const long count = static_cast<long>(n);
+#pragma omp parallel for schedule(static) num_threads(team) if (count >= (long{1} << 16) && team > 1)
+  for (long i = 0; i < count; ++i) data[i] = value;
   v.swap(fresh);
 }
 
 // v sized n, for work storage whose entries are always written before they are read: when it must
-// grow, new storage on huge pages (its old entries are dropped, the new ones are T()), else
-// resized in place.
+// grow, new storage on huge pages written first by `team` threads (its old entries are dropped,
+// the new ones are T()), else resized in place.
 template <typename T>
-void size_work_on_huge_pages(std::vector<T>& v, size_t n) {
+void size_work_on_huge_pages(PageArray<T>& v, size_t n, int team) {
   if (n > v.capacity())
-    assign_on_huge_pages(v, n, T());
+    assign_on_huge_pages(v, n, T(), team);
   else
-    v.resize(n);
+    v.resize(n, T());
 }
 
 }  // namespace meshik

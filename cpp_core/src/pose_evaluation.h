@@ -15,6 +15,7 @@
 
 #include "blend_regions.h"
 #include "example_set_impl.h"
+#include "huge_pages.h"
 #include "pose_system.h"
 
 namespace meshik {
@@ -39,11 +40,11 @@ struct PoseEvaluation {
 // The evaluator's large arrays, kept between solves (sized on first use) so that a solve neither
 // allocates nor page-faults them again.
 struct EvaluationBuffers {
-  std::vector<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
+  PageArray<double> residual;  // #batches by 6 by kLanes: F_j(w), then R_j = Q_j(x) - F_j(w)
   // PoseSystem::num_rows() + AssemblyPartition::num_extra_rows() rows of 3 (K + 1) doubles
   // rounded up to whole blocks of kLanes, from the first 64-byte boundary: the right-hand sides,
   // then their solution, and the chunks' extra rows (layout: PoseEvaluator's rhs_).
-  std::vector<double> rhs;
+  PageArray<double> rhs;
 };
 
 class PoseEvaluator {
@@ -160,7 +161,7 @@ class PoseEvaluator {
   std::vector<int> region_source_;
   std::vector<double> region_lane_weights_;
   std::vector<double> region_curvature_;  // #chunks by K by K: the per-triangle curvature sums
-  std::vector<double>& residual_;        // buffers' residual
+  PageArray<double>& residual_;        // buffers' residual
   unsigned long evaluations_ = 0;        // evaluations so far
   // Buffers' rhs, one row of stride_ doubles per unknown (in the factor's order): the 3
   // coordinates of G'^T s, then with the Jacobian coordinate c's K columns of G'^T J at

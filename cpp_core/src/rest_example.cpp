@@ -11,10 +11,10 @@ namespace {
 // values: #batches by #E examples by `rows` rows of kLanes; returns #batches by #E + 1 by `rows`,
 // example 0 zero in every batch.
 template <typename Value>
-std::vector<Value> prepend_zero_example(const std::vector<Value>& values, int batches, int examples, int rows) {
+PageArray<Value> prepend_zero_example(const PageArray<Value>& values, int batches, int examples, int rows) {
   if (values.empty()) return {};
   const size_t block = static_cast<size_t>(rows) * kLanes;
-  std::vector<Value> out(static_cast<size_t>(batches) * (examples + 1) * block, Value(0));
+  PageArray<Value> out(static_cast<size_t>(batches) * (examples + 1) * block, Value(0));
   for (int b = 0; b < batches; ++b) {
     const Value* from = values.data() + static_cast<size_t>(b) * examples * block;
     std::copy(from, from + examples * block, out.data() + (static_cast<size_t>(b) * (examples + 1) + 1) * block);

@@ -96,9 +96,9 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
 TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles, int team) {
   TriangleFrames frames;
   frames.num_triangles = num_triangles;
-  assign_on_huge_pages(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0);
-  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0);
-  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0);
+  assign_on_huge_pages(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0, team);
+  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0, team);
+  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;
 #pragma omp parallel for num_threads(team) schedule(static)
   for (int batch = 0; batch < batches; ++batch) {

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "huge_pages.h"
+
 namespace meshik {
 
 // Entries stored per triangle for its in-plane gradient coefficients: g_2 (2) and g_3's second
@@ -36,11 +38,11 @@ struct TriangleFrames {
   int num_triangles = 0;
   // #F by kGradientEntries: the in-plane gradient coefficients, g_q of each corner read with
   // corner_gradients (half the memory of all six: 26 MB at 1.08M triangles).
-  std::vector<double> gradient;
+  PageArray<double> gradient;
   // #F by 3 by 2 row-major: U, whose columns are an orthonormal basis of the rest plane.
-  std::vector<double> plane_basis;
+  PageArray<double> plane_basis;
   // #F by 3 by 3 row-major: V^{-1}, the inverse rest frame (fourth vertex included).
-  std::vector<double> frame_inverse;
+  PageArray<double> frame_inverse;
 };
 
 // rest: #V by 3 positions; triangles: #F by 3 indices of non-degenerate triangles. team: threads

@@ -83,13 +83,13 @@ struct Multifrontal {
   const SymbolicFactor& f;
   const Pattern& lower;
   const double* lower_values;
-  std::vector<double>& values;
+  PageArray<double>& values;
   std::vector<Workspace> spaces;
   std::vector<int> owner;           // #S: the workspace holding the supernode's update matrix
   std::vector<size_t> stack_offset; // #S: where in that workspace's stack
 
   Multifrontal(const SymbolicFactor& factor, const Pattern& matrix, const double* matrix_values,
-               std::vector<double>& factor_values, int workspaces)
+               PageArray<double>& factor_values, int workspaces)
       : f(factor), lower(matrix), lower_values(matrix_values), values(factor_values), spaces(workspaces),
         owner(factor.num_supernodes()), stack_offset(factor.num_supernodes()) {}
   // The update matrix of supernode s (after it was pushed).
@@ -105,7 +105,7 @@ struct Supernode {
 };
 
 // Returns supernode s of f, its block in `values`.
-Supernode supernode(const SymbolicFactor& f, std::vector<double>& values, int s) {
+Supernode supernode(const SymbolicFactor& f, PageArray<double>& values, int s) {
   const int k = f.first_column[s + 1] - f.first_column[s];
   const int r = f.row_start[s + 1] - f.row_start[s];
   return {f.first_column[s], k, r, r - k, f.rows.data() + f.row_start[s], values.data() + f.value_start[s]};
@@ -254,11 +254,12 @@ void throw_not_positive_definite(int original_column) {
 }
 
 void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const double* lower_values,
-                          const std::vector<int>& original_column, std::vector<double>& values,
+                          const std::vector<int>& original_column, PageArray<double>& values,
                           const SubtreeSchedule* schedule, int team) {
   const int ns = f.num_supernodes();
-  // Every block is filled before it is read (assemble_block): new storage goes on huge pages.
-  if (values.size() != f.value_start[ns]) assign_on_huge_pages(values, f.value_start[ns], 0.0);
+  // Every block is filled before it is read (assemble_block): new storage goes on huge pages,
+  // first touched by the team.
+  if (values.size() != f.value_start[ns]) assign_on_huge_pages(values, f.value_start[ns], 0.0, team);
   int failed = -1;
   if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
     Multifrontal mf(f, lower, lower_values, values, team + 1);

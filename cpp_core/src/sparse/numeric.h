@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "huge_pages.h"
 #include "sparse/analysis.h"
 #include "sparse/subtree_schedule.h"
 
@@ -13,7 +14,7 @@ namespace meshik::sparse {
 struct FactorValues {
   std::vector<double> prefix_diagonal;  // prefix.size: L(u, u) of the simplicial prefix
   std::vector<double> prefix_below;     // prefix.rows.size(): its entries below the diagonal
-  std::vector<double> supernodal;       // symbolic.value_start.back(): the supernodes' blocks
+  PageArray<double> supernodal;         // symbolic.value_start.back(): the supernodes' blocks
 };
 
 // a_values: the values of the matrix analysed by `analysis` (same pattern). Fills `factor`.
@@ -34,7 +35,7 @@ void factorize_numeric(const Analysis& analysis, const std::vector<double>& a_va
 // first failing pivot in the serial order).
 // original_column[k] names pivot k in the error. Throws NotPositiveDefinite.
 void factorize_supernodal(const SymbolicFactor& symbolic, const Pattern& lower, const double* lower_values,
-                          const std::vector<int>& original_column, std::vector<double>& values,
+                          const std::vector<int>& original_column, PageArray<double>& values,
                           const SubtreeSchedule* schedule = nullptr, int team = 1);
 
 // Throws NotPositiveDefinite naming the original column whose pivot is not positive.
