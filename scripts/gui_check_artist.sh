@@ -47,6 +47,18 @@ artist_keys() {
   wait_log "$pattern" 20 || { shot "${artist}_no_$(date +%s)"; fail "$artist: keys $* gave no log line \"$pattern\" (see $meshlab_log)"; }
 }
 
+# Turns group 2 by typed degrees about the view axis: R with the cursor at screen point $1 $2 (over
+# the group), then the digit keys $3... and Return; waits for each step's log line.
+artist_turn_group_2() {
+  artist_cursor="$1 $2"
+  artist_keys "MeshIK drag: turning group 2" r >/dev/null
+  artist_cursor=
+  xdotool key "${@:3}"
+  sleep 0.5
+  artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
+  sleep 0.5
+}
+
 # Drags from screen point $1 $2 in $3 moves of $4 $5 pixels each; $6: "release" or "escape" (Esc before
 # the button goes up).
 artist_drag() {
@@ -127,13 +139,7 @@ drive_artist_features() {
   "${check[@]}" same "$out/${artist}_escape.ply" "$out/${artist}_drag.ply" || fail "$artist: Esc did not restore the pose"
 
   # Turn group 2 (R over its handle) by 30 degrees about the view axis (typed), saved as a "rotate" target.
-  artist_cursor=$second
-  artist_keys "MeshIK drag: turning group 2" r >/dev/null
-  artist_cursor=
-  xdotool key 3 0
-  sleep 0.5
-  artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
-  sleep 0.5
+  artist_turn_group_2 $second 3 0
   shot "${artist}_rotate"
   weights=$(artist_save_pose "$out/${artist}_rotate.ply")
   artist_save_constraints "$out/${artist}_rotate.json"
@@ -208,13 +214,7 @@ drive_mirror_check() {
   shot "${artist}_handles"
   artist_drag "$wing_x" "$wing_y" 12 2 -5 release
   wait_log "MeshIK drag: drag group 2 " 30 >/dev/null || fail "$artist: the drag was not recorded"
-  artist_cursor="$wing_x $((wing_y - 60))"
-  artist_keys "MeshIK drag: turning group 2" r >/dev/null
-  artist_cursor=
-  xdotool key 2 5
-  sleep 0.5
-  artist_keys "MeshIK drag: turn group 2 about the view axis" Return >/dev/null
-  sleep 0.5
+  artist_turn_group_2 "$wing_x" $((wing_y - 60)) 2 5
   shot "$artist"
   check_symmetric_pose
 
