@@ -1,6 +1,6 @@
 // Thread scaling (issue 27): MeshIK on 1, 2, 4, ... threads up to the machine's cores, with the
 // parallel efficiency t(1) / (T t(T)) of each column, and the floors as ratios against the
-// fastest library factorization measured in the same run.
+// fastest library factorization measured in the same run, interleaved with it round by round.
 //   Elephant (--data elephant-poses: 4 examples, 16 farthest-point handles, targets from pose 5),
 //   in one child process, the thread counts and the libraries taking turns in every round:
 //     ExampleSet   a cold precompute (the analysis cache cleared first),
@@ -13,11 +13,17 @@
 //     iteration    one Gauss-Newton iteration (a drag step: the median time between iteration
 //                  reports), and the child's peak resident memory.
 //   Library: the fastest of CHOLMOD simplicial / supernodal and Eigen SimplicialLDLT (analysis +
-//   numeric, one thread) on the same system: G'^T G' of the same handles with the 4th-vertex
-//   unknowns kept (DESIGN.md's table, the comparison of the issues' floors), and beside it (in
-//   brackets) with them eliminated (the smaller system the Solver itself factors). The elephant's
-//   libraries run in its rounds, beside MeshIK (the same load); the 1.08M's first, in processes of
-//   their own.
+//   numeric, one thread, after one untimed warm-up run) on the same system: G'^T G' of the same
+//   handles with the 4th-vertex unknowns kept (DESIGN.md's table, the comparison of the issues'
+//   floors), and beside it (in brackets) with them eliminated (the smaller system the Solver itself
+//   factors).
+// Interleaving (the machine's speed drifts by up to 50% from one minute to the next, so a library
+// timed once, minutes away from MeshIK, says little): every round is a pair, the library right before
+// MeshIK. The elephant's rounds time all three libraries (the fastest of the round counts), then
+// MeshIK on each thread count, in one child. The 1.08M's rounds are, per thread count, a child timing
+// the library (the one a first full comparison, in a child of its own, found fastest) and then
+// MeshIK's child. Each floor is the median of the per-round ratios MeshIK / library of the same
+// round, printed with their spread (min-max); the times printed are medians as before.
 // Floors (the 2-core machine, 2 threads): elephant Solver <= 0.20x the library, elephant pose
 // <= 0.35x, 1.08M first pose <= 0.35x, peak <= 1.0 GB.
 //
@@ -69,10 +75,31 @@ struct SetView {
   }
 };
 
-// The elephant's medians per thread count (indices as `threads`), and the libraries' on its system
-// with the 4th vertices kept and eliminated.
+// The ratios ours[r] / library[r] of paired rounds: their median, smallest and largest.
+struct RatioSpread {
+  double median = 0, min = 0, max = 0;
+  int rounds = 0;
+};
+
+// ours, library: the times of the same rounds (equal lengths).
+RatioSpread ratio_spread(const std::vector<double>& ours, const std::vector<double>& library) {
+  std::vector<double> ratios;
+  for (size_t r = 0; r < ours.size() && r < library.size(); ++r) ratios.push_back(ours[r] / library[r]);
+  RatioSpread out;
+  if (ratios.empty()) return out;
+  out.median = median(ratios);
+  out.min = *std::min_element(ratios.begin(), ratios.end());
+  out.max = *std::max_element(ratios.begin(), ratios.end());
+  out.rounds = static_cast<int>(ratios.size());
+  return out;
+}
+
+// The elephant's medians per thread count (indices as `threads`), the Solver's and pose's
+// per-round ratios against the library with the 4th vertices kept, and the libraries' medians on
+// its system with the 4th vertices kept and eliminated.
 struct ElephantTimes {
   double example_set[kMaxCounts] = {}, cached_set[kMaxCounts] = {}, solver[kMaxCounts] = {}, pose[kMaxCounts] = {};
+  RatioSpread solver_ratio[kMaxCounts], pose_ratio[kMaxCounts];
   int iterations = 0;
   meshik_bench::LibraryFactor library, eliminated_library;
 };
@@ -124,6 +151,8 @@ ElephantTimes time_elephant(const PoseSet& set, const std::vector<int>& threads,
     out.cached_set[c] = median(cached[c]);
     out.solver[c] = median(solver[c]);
     out.pose[c] = median(pose[c]);
+    out.solver_ratio[c] = ratio_spread(solver[c], kept_ms);
+    out.pose_ratio[c] = ratio_spread(pose[c], kept_ms);
   }
   return out;
 }
@@ -164,11 +193,10 @@ FirstPose first_pose(const PoseSet& set, int threads) {
   return out;
 }
 
-// The fastest library's factorization of the set's system (handles as the Solver's).
-meshik_bench::LibraryFactor library_factor(const PoseSet& set, bool keep_fourth_vertices, int reps) {
+// The set's system (handles as the Solver's; the lower triangle).
+meshik::CscMatrix handle_system(const PoseSet& set, bool keep_fourth_vertices) {
   const std::vector<int> handles = meshik_bench::farthest_point_handles(set.rest.vertices, kHandles);
-  return meshik_bench::fastest_library_factor(
-      meshik_bench::deformation_normal_matrix(set.rest, handles, keep_fourth_vertices), reps);
+  return meshik_bench::deformation_normal_matrix(set.rest, handles, keep_fourth_vertices);
 }
 
 // "1,2,4" -> {1, 2, 4}; empty: 1, 2, 4, ... below the cores, then the cores.
@@ -195,12 +223,16 @@ std::string with_efficiency(double ms, double one_thread_ms, int threads) {
   return text;
 }
 
-// "name ratio x (ours ms / library ms) <= floor: met|MISSED".
-std::string floor_line(const char* what, double ours_ms, const meshik_bench::LibraryFactor& library, double floor) {
-  char line[256];
-  const double ratio = ours_ms / library.ms;
-  std::snprintf(line, sizeof line, "%s: %.1f ms / %.1f ms (%s) = %.3fx <= %.2fx: %s", what, ours_ms, library.ms,
-                library.name, ratio, floor, ratio <= floor ? "met" : "MISSED");
+// "name: ours ms / library ms (library) medians; per-round ratio median x (min-max, N rounds) <=
+// floor: met|MISSED", the floor judged on the median of the per-round ratios.
+std::string floor_line(const char* what, double ours_ms, const meshik_bench::LibraryFactor& library,
+                       const RatioSpread& ratio, double floor) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%s: %.1f ms / %.1f ms (%s), medians; per-round ratio median %.3fx (%.3f-%.3f, %d rounds) "
+                "<= %.2fx: %s",
+                what, ours_ms, library.ms, library.name, ratio.median, ratio.min, ratio.max, ratio.rounds, floor,
+                ratio.median <= floor ? "met" : "MISSED");
   return line;
 }
 
@@ -232,11 +264,16 @@ int main(int argc, char** argv) {
   std::printf("Thread scaling on %d cores (load average %.2f when started); times in ms, medians; (%%): parallel\n"
               "efficiency t(1) / (T t(T)). Elephant: %d rounds; 1.08M: %d fresh processes per thread count.\n\n",
               cores, load[0], rounds, big_rounds);
-  // The libraries first, each in its own process (the parent never starts OpenMP).
+  // The 1.08M's full library comparisons first, each in its own process (the parent never starts
+  // OpenMP): the fastest library, timed again in every round, and the eliminated system's.
   meshik_bench::LibraryFactor big_library, big_eliminated_library;
   const PoseSet large = big ? meshik_bench::subdivided(horse, 3) : PoseSet();
-  const bool compared = !big || (meshik_bench::in_child([&] { return library_factor(large, true, 1); }, big_library) &&
-                                 meshik_bench::in_child([&] { return library_factor(large, false, 1); }, big_eliminated_library));
+  const bool compared =
+      !big ||
+      (meshik_bench::in_child([&] { return meshik_bench::fastest_library_factor(handle_system(large, true), 1); },
+                              big_library) &&
+       meshik_bench::in_child([&] { return meshik_bench::fastest_library_factor(handle_system(large, false), 1); },
+                              big_eliminated_library));
   if (!compared) {
     std::printf("(a library comparison failed)\n");
     return 1;
@@ -248,13 +285,28 @@ int main(int argc, char** argv) {
   }
   const meshik_bench::LibraryFactor& elephant_library = e.library;
   const meshik_bench::LibraryFactor& elephant_eliminated_library = e.eliminated_library;
+  // The 1.08M's rounds: per thread count, the library's child, then MeshIK's.
   std::vector<std::vector<FirstPose>> runs(threads.size());
+  std::vector<std::vector<double>> paired_library_ms(threads.size()), paired_first_ms(threads.size());
+  std::vector<double> big_library_ms;
   for (int round = 0; big && round < big_rounds; ++round)
     for (size_t c = 0; c < threads.size(); ++c) {
+      meshik_bench::LibraryFactor library;
       FirstPose run;
-      if (meshik_bench::in_child([&] { return first_pose(large, threads[c]); }, run)) runs[c].push_back(run);
-      else std::printf("(1.08M on %d threads: the child failed)\n", threads[c]);
+      if (!meshik_bench::in_child(
+              [&] { return meshik_bench::one_library_factor(handle_system(large, true), big_library.index, 1); },
+              library)) {
+        std::printf("(1.08M library before %d threads: the child failed)\n", threads[c]);
+      } else if (!meshik_bench::in_child([&] { return first_pose(large, threads[c]); }, run)) {
+        std::printf("(1.08M on %d threads: the child failed)\n", threads[c]);
+      } else {
+        runs[c].push_back(run);
+        big_library_ms.push_back(library.ms);
+        paired_library_ms[c].push_back(library.ms);
+        paired_first_ms[c].push_back(run.example_set_ms + run.solver_ms + run.pose_ms);
+      }
     }
+  if (!big_library_ms.empty()) big_library.ms = median(big_library_ms);
   std::vector<FirstPose> big_median(threads.size());  // each phase's median
   std::vector<double> big_first(threads.size());       // the first pose's median
   for (size_t c = 0; c < threads.size(); ++c) {
@@ -287,25 +339,32 @@ int main(int argc, char** argv) {
                 with_efficiency(big_first[c], one ? big_first[0] : 0, threads[c]).c_str(), b.example_set_ms, b.solver_ms,
                 b.pose_ms, b.iteration_ms, b.peak_mb);
   }
-  std::printf("\nLibrary (fastest, analysis + numeric, 1 thread), 4th vertices kept [eliminated]: elephant %.1f ms "
-              "(%s) [%.1f ms, %s]", elephant_library.ms, elephant_library.name, elephant_eliminated_library.ms,
+  std::printf("\nLibrary (fastest, analysis + numeric, 1 thread; medians over the rounds), 4th vertices kept\n"
+              "[eliminated]: elephant %.1f ms (%s) [%.1f ms, %s]",
+              elephant_library.ms, elephant_library.name, elephant_eliminated_library.ms,
               elephant_eliminated_library.name);
   if (big)
-    std::printf(", 1.08M %.0f ms (%s) [%.0f ms, %s]", big_library.ms, big_library.name, big_eliminated_library.ms,
-                big_eliminated_library.name);
+    std::printf(", 1.08M %.0f ms (%s, %zu runs, each before a MeshIK run) [%.0f ms, %s, once]", big_library.ms,
+                big_library.name, big_library_ms.size(), big_eliminated_library.ms, big_eliminated_library.name);
   std::printf("; elephant pose: %d iterations\n", e.iterations);
   const auto two = std::find(threads.begin(), threads.end(), 2);
   if (two == threads.end()) return 0;
   const size_t c = static_cast<size_t>(two - threads.begin());
-  std::printf("\nFloors (2 threads; ratios against the library on the system with 4th vertices kept, in\n"
-              "brackets against the one with them eliminated):\n");
-  std::printf("  %s [%.3fx]\n", floor_line("elephant Solver", e.solver[c], elephant_library, 0.20).c_str(),
+  std::printf("\nFloors (2 threads; the median of the per-round ratios MeshIK / library of the same round,\n"
+              "on the system with 4th vertices kept; in brackets the ratio of the medians against the one\n"
+              "with them eliminated):\n");
+  std::printf("  %s [%.3fx]\n",
+              floor_line("elephant Solver", e.solver[c], elephant_library, e.solver_ratio[c], 0.20).c_str(),
               e.solver[c] / elephant_eliminated_library.ms);
-  std::printf("  %s [%.3fx]\n", floor_line("elephant pose", e.pose[c], elephant_library, 0.35).c_str(),
+  std::printf("  %s [%.3fx]\n", floor_line("elephant pose", e.pose[c], elephant_library, e.pose_ratio[c], 0.35).c_str(),
               e.pose[c] / elephant_eliminated_library.ms);
   if (big && !runs[c].empty()) {
     const FirstPose& b = big_median[c];
-    std::printf("  %s [%.3fx]\n", floor_line("1.08M first pose", big_first[c], big_library, 0.35).c_str(),
+    const RatioSpread first_ratio = ratio_spread(paired_first_ms[c], paired_library_ms[c]);
+    meshik_bench::LibraryFactor paired_library = big_library;  // its runs beside the 2-thread ones
+    paired_library.ms = median(paired_library_ms[c]);
+    std::printf("  %s [%.3fx]\n",
+                floor_line("1.08M first pose", big_first[c], paired_library, first_ratio, 0.35).c_str(),
                 big_first[c] / big_eliminated_library.ms);
     std::printf("  1.08M peak memory %.0f MB <= %.0f MB (1.0 GB): %s\n", b.peak_mb, kGigabyteMb,
                 b.peak_mb <= kGigabyteMb ? "met" : "MISSED");

@@ -132,12 +132,23 @@ inline Result bench_meshik(const CscMatrix& a, const Eigen::MatrixXd& b, const E
   return r;
 }
 
-// All three libraries on the lower triangle a with right-hand sides b (n by k); full: a's
-// symmetric matrix (full_matrix) for the residuals.
+// The libraries of bench_libraries, in its order.
+constexpr int kLibraries = 3;
+
+// Library `index` (0 CHOLMOD simplicial, 1 CHOLMOD supernodal, 2 Eigen SimplicialLDLT) on the lower
+// triangle a with right-hand sides b (n by k); full: a's symmetric matrix (full_matrix) for the
+// residuals.
+inline Result bench_library(int index, const CscMatrix& a, const Eigen::MatrixXd& b,
+                            const Eigen::SparseMatrix<double>& full, int reps) {
+  return index == 2 ? bench_eigen_ldlt(a, b, full, reps) : bench_cholmod(a, b, full, reps, index == 1);
+}
+
+// All kLibraries libraries (bench_library's arguments), in index order.
 inline std::vector<Result> bench_libraries(const CscMatrix& a, const Eigen::MatrixXd& b,
                                            const Eigen::SparseMatrix<double>& full, int reps) {
-  return {bench_cholmod(a, b, full, reps, false), bench_cholmod(a, b, full, reps, true),
-          bench_eigen_ldlt(a, b, full, reps)};
+  std::vector<Result> results;
+  for (int index = 0; index < kLibraries; ++index) results.push_back(bench_library(index, a, b, full, reps));
+  return results;
 }
 
 // The library whose factorization (analysis + numeric) was fastest (results: not empty).
@@ -147,20 +158,37 @@ inline std::vector<Result>::const_iterator fastest_factor(const std::vector<Resu
   });
 }
 
-// The fastest library's factorization of the lower triangle `a` (analysis + numeric, one thread,
-// medians of `reps` runs): its time and name (a plain struct, so a child process can send it).
+// A library's factorization of the lower triangle `a` (analysis + numeric, one thread, medians of
+// `reps` runs): its time, name and bench_library index (a plain struct, so a child process can send it).
 struct LibraryFactor {
   double ms = 0;
+  int index = 0;
   char name[64] = {};
 };
+
+// The LibraryFactor of results[index] (one of bench_libraries' results).
+inline LibraryFactor library_factor_of(const std::vector<Result>& results, size_t index) {
+  LibraryFactor out;
+  out.ms = results[index].analyze_ms + results[index].numeric_ms;
+  out.index = static_cast<int>(index);
+  std::snprintf(out.name, sizeof out.name, "%s", results[index].name.c_str());
+  return out;
+}
+
+// The fastest of the kLibraries libraries on `a` (15 random right-hand sides for their solves).
 inline LibraryFactor fastest_library_factor(const CscMatrix& a, int reps) {
   const Eigen::SparseMatrix<double> full = full_matrix(a);
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(a.rows, 15);
   const std::vector<Result> theirs = bench_libraries(a, b, full, reps);
-  const auto fastest = fastest_factor(theirs);
-  LibraryFactor out;
-  out.ms = fastest->analyze_ms + fastest->numeric_ms;
-  std::snprintf(out.name, sizeof out.name, "%s", fastest->name.c_str());
+  return library_factor_of(theirs, static_cast<size_t>(fastest_factor(theirs) - theirs.begin()));
+}
+
+// Library `index` alone on `a`, timed as fastest_library_factor times each library.
+inline LibraryFactor one_library_factor(const CscMatrix& a, int index, int reps) {
+  const Eigen::SparseMatrix<double> full = full_matrix(a);
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(a.rows, 15);
+  LibraryFactor out = library_factor_of({bench_library(index, a, b, full, reps)}, 0);
+  out.index = index;
   return out;
 }
 
