@@ -12,7 +12,20 @@
 
 namespace meshik {
 
-LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, EvaluationBuffers& buffers,
+LinearStartAssembly assemble_linear_start(const ExampleSet::Impl& set, const PoseSystem& system,
+                                          EvaluationBuffers& buffers, int team) {
+  LinearStartAssembly out;
+  const int k = set.num_examples;
+  if (k == 0) return out;
+  out.origin.assign(3 * system.handles().size(), 0.0);
+  out.evaluator = std::make_unique<PoseEvaluator>(set, system, FeatureSpace::kLinear, 0.0, out.origin.data(),
+                                                  buffers, team);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
+  out.evaluator->assemble_system(zero.data());
+  return out;
+}
+
+LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, LinearStartAssembly assembly,
                          int team) {
   const int k = set.num_examples;
   const int num_handles = static_cast<int>(system.handles().size());
@@ -23,11 +36,11 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, 
 
   // All handles at the origin: the Gauss-Newton system gives S and g_U, then Z = K'^{-1} G'^T L
   // on the unknowns coupled to a handle (the backward solve along their tree paths only).
-  const std::vector<double> origin(3 * static_cast<size_t>(num_handles), 0.0);
-  PoseEvaluator evaluator(set, system, FeatureSpace::kLinear, 0.0, origin.data(), buffers, team);
+  PoseEvaluator& evaluator = *assembly.evaluator;
+  evaluator.set_team(team);
   PoseEvaluation at_rest;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(k);
-  evaluator.evaluate_system(zero.data(), at_rest);
+  evaluator.solve_assembled_system(zero.data(), at_rest);
   schur_ = at_rest.schur;
   rest_gradient_ = at_rest.step_rhs;
   evaluator.solve_jacobian_rows(system.coupling_row());

@@ -12,14 +12,30 @@
 // minimum) and are the linear space's solution.
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "example_set_impl.h"
+#include "pose_evaluation.h"
 #include "pose_system.h"
 
 namespace meshik {
 
-struct EvaluationBuffers;
+// The linear space's Gauss-Newton system at w = 0 with every handle at the origin, assembled but
+// not solved: the part of a LinearStart that reads the handle set's rows, coupling and partition
+// but not its factor, so it may be built while the system is factored.
+struct LinearStartAssembly {
+  std::vector<double> origin;                // #H by 3 zeros: the evaluator's targets
+  std::unique_ptr<PoseEvaluator> evaluator;  // assembled at zero weights; null without examples
+};
+
+// set / system: the example set and its handle system (rows numbered; factored or not); buffers:
+// the evaluation's storage, sized (and its pages touched) here; team: threads of the assembly (a
+// thread_count; the same bits for any team). Returns the assembly LinearStart finishes.
+LinearStartAssembly assemble_linear_start(const ExampleSet::Impl& set, const PoseSystem& system,
+                                          EvaluationBuffers& buffers, int team = 1);
 
 class LinearStart {
  public:
@@ -27,7 +43,11 @@ class LinearStart {
   // forward solve of 3 (#E + 1) right-hand sides) and the backward solve on the handles' tree
   // paths. team: threads of those passes (a thread_count; the same bits for any team). buffers:
   // the evaluation's storage, left sized (and its pages touched) for the poses that reuse it.
-  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, EvaluationBuffers& buffers, int team = 1);
+  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, EvaluationBuffers& buffers, int team = 1)
+      : LinearStart(set, system, assemble_linear_start(set, system, buffers, team), team) {}
+  // The same from assemble_linear_start's result for this set and system (its buffers are left
+  // sized for the poses), solved once the system is factored.
+  LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, LinearStartAssembly assembly, int team = 1);
 
   // targets: #H by 3 handle positions; regularization: kappa >= 0. Returns #E weights.
   Eigen::VectorXd weights(const double* targets, double regularization) const;

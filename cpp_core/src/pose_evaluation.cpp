@@ -680,10 +680,14 @@ void PoseEvaluator::region_products(Eigen::MatrixXd& hth, Eigen::VectorXd& htx) 
 }
 
 void PoseEvaluator::assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out) {
+  stride_ = row_width(with_jacobian ? 3 * (num_weights_ + 1) : 3);
+  assemble(weights, with_jacobian);
+  forward_solve_assembled(weights, with_jacobian, out);
+}
+
+void PoseEvaluator::forward_solve_assembled(const double* weights, bool with_jacobian, PoseEvaluation& out) {
   const int k = num_weights_;
   const int nrhs = with_jacobian ? 3 * (k + 1) : 3;
-  stride_ = row_width(nrhs);
-  assemble(weights, with_jacobian);
   system_.forward_solve(rhs_, stride_, nrhs, team_);
   out.weights.assign(weights, weights + k);
   if (!with_jacobian) return;
@@ -728,7 +732,17 @@ void PoseEvaluator::solve_jacobian_rows(const std::vector<int>& rows) {
 }
 
 void PoseEvaluator::evaluate_system(const double* weights, PoseEvaluation& out) {
-  assemble_and_forward_solve(weights, true, out);
+  assemble_system(weights);
+  solve_assembled_system(weights, out);
+}
+
+void PoseEvaluator::assemble_system(const double* weights) {
+  stride_ = row_width(3 * (num_weights_ + 1));
+  assemble(weights, true);
+}
+
+void PoseEvaluator::solve_assembled_system(const double* weights, PoseEvaluation& out) {
+  forward_solve_assembled(weights, true, out);
   out.vertices.clear();
   out.inverted_triangles.clear();
   out.energy = 0.0;

@@ -72,6 +72,13 @@ class PoseEvaluator {
   // Only the Gauss-Newton system at weights (K): fills out.weights, out.schur and out.step_rhs
   // (no pose, energy or backward solve; out.evaluation = 0, so add_second_order refuses it).
   void evaluate_system(const double* weights, PoseEvaluation& out);
+  // evaluate_system in two halves: the assembly at weights (K), which reads the system's rows,
+  // coupling and partition but not its factor (so it may run while the system is factored), then,
+  // once it is factored, the rest with the same weights.
+  void assemble_system(const double* weights);
+  void solve_assembled_system(const double* weights, PoseEvaluation& out);
+  // The threads of the passes from now on (a thread_count; the same bits for any team).
+  void set_team(int team) { team_ = team; }
   // After evaluate_system: finishes the solve of the Jacobian's columns on the system rows `rows`
   // (factor order) only, along their elimination-tree paths.
   void solve_jacobian_rows(const std::vector<int>& rows);
@@ -124,6 +131,8 @@ class PoseEvaluator {
   // assemble(), the forward solve, and with the Jacobian the Gauss-Newton system (out.weights,
   // out.schur, out.step_rhs).
   void assemble_and_forward_solve(const double* weights, bool with_jacobian, PoseEvaluation& out);
+  // assemble_and_forward_solve after its assemble() (stride_ set for with_jacobian).
+  void forward_solve_assembled(const double* weights, bool with_jacobian, PoseEvaluation& out);
   // Writes x*(w) (#V by 3) from the solved rhs_ and the targets: a work-shared loop, called
   // inside a parallel region.
   void gather_vertices(double* vertices) const;

@@ -2,6 +2,7 @@
 #include "pose_system.h"
 
 #include <algorithm>
+#include <future>
 #include <string>
 #include <utility>
 
@@ -46,7 +47,8 @@ std::vector<int> take_out_handles(const CscMatrix& lower, std::vector<double>& v
 }  // namespace
 
 PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-                       const ProgressCallback& progress, int team, double handle_stiffness)
+                       const ProgressCallback& progress, int team, double handle_stiffness,
+                       const std::function<void(const PoseSystem&)>& beside_factorization)
     : handles_(handles) {
   const int n = set.num_vertices;
   handle_of_vertex_.assign(n, -1);
@@ -82,19 +84,29 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
 
   if (progress && !progress(0.0, "factorizing"))
     throw Cancelled("cancelled before factorizing");
+  if (num_rows_ > 0) factor_.share_analysis(set.system_analysis);
+  // What the factorization does not need: the rows in the factor's order (the analysis's), the
+  // partition, then beside_factorization. With it and team > 1, on a thread of its own while the
+  // team factors the values (the future waits for it, also when the factorization throws).
+  const auto number_rows = [this, &set, &beside_factorization] {
+    number_rows_in_factor_order();
+    partition_ = assembly_partition(set.triangles, unknown_of_vertex_, num_rows_);
+    if (beside_factorization) beside_factorization(*this);
+  };
+  std::future<void> beside;
+  if (beside_factorization && team > 1)
+    beside = std::async(std::launch::async, number_rows);
+  else
+    number_rows();
   try {
-    if (num_rows_ > 0) {
-      factor_.share_analysis(set.system_analysis);
-      factor_.factorize_values(values, team);
-    }
+    if (num_rows_ > 0) factor_.factorize_values(values, team);
   } catch (const NotPositiveDefinite& e) {
     throw InputError(std::string("the mesh's pose system is singular (degenerate geometry): ") +
                      e.what());
   }
-  number_rows_in_factor_order();
-  partition_ = assembly_partition(set.triangles, unknown_of_vertex_, num_rows_);
+  if (beside.valid()) beside.get();
   // The factorization's work arrays (the values' copies, the update stacks) are freed: their
-  // pages go back before the linear start's and the poses' buffers are allocated.
+  // pages go back before the poses' own buffers are allocated.
   release_free_heap_memory();
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
 }

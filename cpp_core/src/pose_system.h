@@ -10,6 +10,7 @@
 // a permuted copy.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "assembly_partition.h"
@@ -24,9 +25,14 @@ class PoseSystem {
   // of the triangles holds one); team: threads of the factorization (a thread_count; the same
   // bits for any team); handle_stiffness: 0 for hard handles, > 0 for soft ones (soft_handles.h:
   // the handles keep their rows, K' gains their pull, and the coupling is that pull).
-  // Assembles K' and factors it on the set's analysis.
+  // Assembles K' and factors it on the set's analysis. beside_factorization (optional) is called
+  // with this system once everything but the factor is set (rows, coupling, handle triangles,
+  // partition): with team > 1 on a thread of its own (which also numbers the rows and builds the
+  // partition) while the team factors, else before; it must not use the factor. What it throws
+  // is thrown here, after the factorization.
   PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& handles,
-             const ProgressCallback& progress = {}, int team = 1, double handle_stiffness = 0.0);
+             const ProgressCallback& progress = {}, int team = 1, double handle_stiffness = 0.0,
+             const std::function<void(const PoseSystem&)>& beside_factorization = {});
 
   // #V: the row of each free vertex (an unknown of K'), or -1 for a handle or a vertex used by
   // no triangle.

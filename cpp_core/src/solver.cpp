@@ -1,5 +1,6 @@
 // Solver: validates a handle set, factors its system once, and poses the mesh per target set.
 #include <algorithm>
+#include <functional>
 #include <mutex>
 
 #include "blend_regions.h"
@@ -61,6 +62,18 @@ class BuffersLease {
   std::unique_ptr<EvaluationBuffers> buffers_;
 };
 
+// The linear start is assembled beside the factorization only when its buffers take at most this
+// much: larger ones would sit beside the factorization's work arrays instead of replacing them
+// (at 1.08M triangles the peak memory grew by 62 MB that way, past its 1 GB floor).
+constexpr double kAssembledBesideMb = 32.0;
+
+// The MB of a pose's evaluation buffers for set (EvaluationBuffers: the right-hand sides of
+// 3 (#E + 1) columns per vertex, rounded up to whole vectors, and 6 residual values per triangle).
+double evaluation_buffer_mb(const ExampleSet::Impl& set) {
+  const double columns = PoseSystem::padded_width(3 * (set.num_examples + 1));
+  return (columns * set.num_vertices + 6.0 * set.num_triangles) * sizeof(double) / (1024.0 * 1024.0);
+}
+
 }  // namespace
 
 Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int>& handles,
@@ -76,10 +89,18 @@ Solver::Solver(std::shared_ptr<const ExampleSet> examples, const std::vector<int
   impl_->handles = handles;
   impl_->options = options;
   const int team = thread_count(options.threads);
-  impl_->system = std::make_unique<PoseSystem>(set, internal_handles, progress, team, options.handle_stiffness);
   // The linear start's buffers are the first poses' (the pool's first entry): sized and touched.
+  // Its assembly needs no factor: with small buffers one more thread assembles it while the team
+  // factors the system (the same bits as after it).
   auto buffers = std::make_unique<EvaluationBuffers>();
-  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, *buffers, team);
+  LinearStartAssembly assembly;
+  std::function<void(const PoseSystem&)> assemble_beside;
+  if (team > 1 && evaluation_buffer_mb(set) <= kAssembledBesideMb)
+    assemble_beside = [&](const PoseSystem& system) { assembly = assemble_linear_start(set, system, *buffers, 1); };
+  impl_->system =
+      std::make_unique<PoseSystem>(set, internal_handles, progress, team, options.handle_stiffness, assemble_beside);
+  if (!assemble_beside) assembly = assemble_linear_start(set, *impl_->system, *buffers, team);
+  impl_->linear_start = std::make_unique<LinearStart>(set, *impl_->system, std::move(assembly), team);
   impl_->pool.push_back(std::move(buffers));
   if (options.blend == Blend::kFree) impl_->free_features = std::make_unique<ExampleFeatures>(with_rest_example(set.features));
   if (!options.vertex_regions.empty())
