@@ -6,7 +6,9 @@
 //     ExampleSet   a cold precompute (the analysis cache cleared first),
 //     cached       a second ExampleSet of the same mesh (its analysis from the cache),
 //     Solver       building the solver for the handle set on T threads,
-//     pose         one whole pose from the linear start (medians over the rounds).
+//     pose         one whole pose from the linear start (medians over the rounds),
+//   and the main thread's CPU time of the Solver and pose (RUSAGE_THREAD: steadier than the wall
+//   time under load).
 //   1.08M triangles (the horse midpoint-subdivided 3 times, as bench_scaling), each run in a fresh
 //   child process (its peak memory its own), the thread counts taking turns:
 //     first        ExampleSet + Solver + pose on T threads: the time to the first pose,
@@ -28,6 +30,7 @@
 // <= 0.35x, 1.08M first pose <= 0.35x, peak <= 1.0 GB.
 //
 // Usage: bench_thread_scaling [--data DIR] [--threads 1,2,4] [--rounds N] [--big-rounds N] [--big 0|1]
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -55,6 +58,15 @@ using meshik_bench::PoseSet;
 constexpr int kHandles = 16;
 constexpr int kMaxCounts = 8;        // thread counts in one table
 constexpr double kGigabyteMb = 1024.0;
+
+// The calling thread's CPU time so far (user + system, ms; Linux RUSAGE_THREAD): far steadier than
+// the wall time on a shared machine, and on a quiet one the main thread's path bounds the wall time
+// of a pass from below.
+double thread_cpu_ms() {
+  rusage usage{};
+  getrusage(RUSAGE_THREAD, &usage);
+  return (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) * 1e3 + (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e3;
+}
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -99,6 +111,7 @@ RatioSpread ratio_spread(const std::vector<double>& ours, const std::vector<doub
 // its system with the 4th vertices kept and eliminated.
 struct ElephantTimes {
   double example_set[kMaxCounts] = {}, cached_set[kMaxCounts] = {}, solver[kMaxCounts] = {}, pose[kMaxCounts] = {};
+  double solver_main_cpu[kMaxCounts] = {}, pose_main_cpu[kMaxCounts] = {};  // the main thread's CPU ms
   RatioSpread solver_ratio[kMaxCounts], pose_ratio[kMaxCounts];
   int iterations = 0;
   meshik_bench::LibraryFactor library, eliminated_library;
@@ -117,6 +130,7 @@ ElephantTimes time_elephant(const PoseSet& set, const std::vector<int>& threads,
   const std::vector<double> targets = meshik_bench::gather_rows(set.held_out, handles);
   const size_t counts = threads.size();
   std::vector<std::vector<double>> cold(counts), cached(counts), solver(counts), pose(counts);
+  std::vector<std::vector<double>> solver_cpu(counts), pose_cpu(counts);
   const meshik::CscMatrix kept = meshik_bench::deformation_normal_matrix(set.rest, handles, true);
   const meshik::CscMatrix eliminated = meshik_bench::deformation_normal_matrix(set.rest, handles, false);
   std::vector<double> kept_ms, eliminated_ms;
@@ -136,12 +150,16 @@ ElephantTimes time_elephant(const PoseSet& set, const std::vector<int>& threads,
       cached[c].push_back(ms_since(start));
       meshik::SolverOptions options;
       options.threads = threads[c];
+      double cpu = thread_cpu_ms();
       start = std::chrono::steady_clock::now();
       const meshik::Solver built(examples, handles, options);
       solver[c].push_back(ms_since(start));
+      solver_cpu[c].push_back(thread_cpu_ms() - cpu);
+      cpu = thread_cpu_ms();
       start = std::chrono::steady_clock::now();
       out.iterations = built.solve(targets.data()).iterations;
       pose[c].push_back(ms_since(start));
+      pose_cpu[c].push_back(thread_cpu_ms() - cpu);
     }
   }
   out.library.ms = median(kept_ms);
@@ -151,6 +169,8 @@ ElephantTimes time_elephant(const PoseSet& set, const std::vector<int>& threads,
     out.cached_set[c] = median(cached[c]);
     out.solver[c] = median(solver[c]);
     out.pose[c] = median(pose[c]);
+    out.solver_main_cpu[c] = median(solver_cpu[c]);
+    out.pose_main_cpu[c] = median(pose_cpu[c]);
     out.solver_ratio[c] = ratio_spread(solver[c], kept_ms);
     out.pose_ratio[c] = ratio_spread(pose[c], kept_ms);
   }
@@ -347,6 +367,11 @@ int main(int argc, char** argv) {
     std::printf(", 1.08M %.0f ms (%s, %zu runs, each before a MeshIK run) [%.0f ms, %s, once]", big_library.ms,
                 big_library.name, big_library_ms.size(), big_eliminated_library.ms, big_eliminated_library.name);
   std::printf("; elephant pose: %d iterations\n", e.iterations);
+  std::printf("Elephant, the main thread's CPU time (medians, ms; steadier than the wall time under load):");
+  for (size_t c = 0; c < threads.size(); ++c)
+    std::printf("%s %d threads Solver %.1f pose %.1f", c == 0 ? "" : ";", threads[c], e.solver_main_cpu[c],
+                e.pose_main_cpu[c]);
+  std::printf("\n");
   const auto two = std::find(threads.begin(), threads.end(), 2);
   if (two == threads.end()) return 0;
   const size_t c = static_cast<size_t>(two - threads.begin());
