@@ -168,8 +168,9 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="with --simplify: pose the simplified examples instead (faster per frame, but the "
                              "simplified mesh may choose other example weights: a limb can move differently)")
     parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
-                        help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
-                             "with handles locked and the error summed over all poses (default fast)")
+                        help="the decimator (both lock the handles, sum the error over all poses and bound the "
+                             "distance to the full surface in every pose): fast, MeshIK's own; openmesh, OpenMesh's "
+                             "decimater, several times slower (default fast)")
     parser.add_argument("--format", dest="formats", default="drc,glb", metavar="LIST", help=_FORMAT_HELP)
     parser.add_argument("--feature-space", choices=("nonlinear", "linear"), default=None,
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")

@@ -348,7 +348,6 @@ def _report(name, key, constraint_set, meshes, simplified, simplification: Tuple
         "simplification": None if simplified is None else {
             "simplifier": simplifier, "posed": "simplified example set" if simplify_first else "full resolution",
             "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
-            "snapped_vertices": simplified.snapped,
             "distance_bound": _finite_or_none(simplified.distance_bound), "bound_relaxations": simplified.relaxations,
             "merged_handle_vertices": int(len(resolved.handles) - len(np.unique(simplified.vertex_map[resolved.handles])))},
         "solver": dict(solver_options, handle_vertices=len(resolved.handles), posed_vertices=posed_count),
