@@ -167,7 +167,11 @@ double DistanceGuard::worst_distance() const {
   for (int t = 0; t < mesh_.num_triangles(); ++t) {
     if (!mesh_.triangle_alive(t)) continue;
     const auto& c = mesh_.corners(t);
-    for (int point : attached_[t]) worst = std::max(worst, pose_distance(point, c, kUnlimited));
+    // each measure is searched only above the worst so far: a search that exceeds it returns an
+    // exact distance above it (raising it), one that does not leaves it the maximum
+    double found;
+    for (int point : attached_[t])
+      while ((found = pose_distance(point, c, worst)) > worst) worst = found;
     // an untouched original triangle covers itself (gap 0); a changed one is sampled
     if (covered_[t].size() == 1 && original_triangles_[covered_[t][0]] == c) continue;
     std::vector<int> nearby;  // the original triangles covered by the triangles sharing a corner
@@ -175,7 +179,7 @@ double DistanceGuard::worst_distance() const {
       const std::vector<int> around = covered_around(v);
       nearby.insert(nearby.end(), around.begin(), around.end());
     }
-    worst = std::max(worst, surface_gap(c, nearby, kUnlimited));
+    while ((found = surface_gap(c, nearby, worst)) > worst) worst = found;
   }
   return worst;
 }

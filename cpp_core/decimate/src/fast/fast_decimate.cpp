@@ -25,11 +25,12 @@ using decimation::PoseQuadrics;
 using decimation::PoseTable;
 using decimation::Vec3;
 
-// A half-edge collapse v0 -> v1 waiting in the heap, valid while v0's stamp is unchanged.
+// A half-edge collapse v0 -> v1 waiting in the heap, valid while both vertices' stamps (bumped
+// when their quadrics change) are unchanged.
 struct Candidate {
   double error;
   int v0, v1;
-  unsigned stamp;
+  unsigned stamp0, stamp1;
 };
 
 // Heap order: the least error first, ties by vertex ids (the same order on every run).
@@ -74,6 +75,7 @@ class FastDecimator {
         guard_(mesh_, poses),
         locked_(rest.num_vertices, 0),
         stamp_(rest.num_vertices, 0),
+        refused_(rest.num_vertices),
         parent_(rest.num_vertices),
         min_cos_(min_cos),
         threads_(threads) {
@@ -100,11 +102,14 @@ class FastDecimator {
       }
       const Candidate c = heap_.top();
       heap_.pop();
-      if (c.stamp != stamp_[c.v0] || !mesh_.vertex_alive(c.v0) || !mesh_.vertex_alive(c.v1) || locked_[c.v0]) continue;
-      if (!mesh_.collapse_keeps_manifold(c.v0, c.v1)) continue;
-      if (!keeps_triangles_sound(mesh_, poses_, c.v0, c.v1, min_cos_)) continue;
-      if (!guard_.allows(c.v0, c.v1)) continue;
-      collapse(c.v0, c.v1);
+      if (!mesh_.vertex_alive(c.v0) || !mesh_.vertex_alive(c.v1) || c.stamp0 != stamp_[c.v0] ||
+          c.stamp1 != stamp_[c.v1])
+        continue;
+      if (mesh_.collapse_keeps_manifold(c.v0, c.v1) && keeps_triangles_sound(mesh_, poses_, c.v0, c.v1, min_cos_) &&
+          guard_.allows(c.v0, c.v1))
+        collapse(c.v0, c.v1);
+      else
+        refused_[c.v0].push_back(c.v1);  // tried again when v0's neighbourhood changes
     }
     result.worst_distance = guard_.worst_distance();
   }
@@ -130,10 +135,9 @@ class FastDecimator {
   }
 
  private:
-  // Pushes every half-edge out of v with v's current stamp.
-  void push_from(int v) {
-    if (locked_[v]) return;
-    for (int n : mesh_.neighbours(v)) heap_.push({quadrics_.collapse_error(v, n), v, n, stamp_[v]});
+  // Pushes the half-edge collapse v0 -> v1 (unless v0 is locked) with the current stamps.
+  void push(int v0, int v1) {
+    if (!locked_[v0]) heap_.push({quadrics_.collapse_error(v0, v1), v0, v1, stamp_[v0], stamp_[v1]});
   }
 
   // A fresh heap of every half-edge out of a free vertex (errors computed on the threads).
@@ -142,26 +146,32 @@ class FastDecimator {
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads_)
     for (int v = 0; v < mesh_.num_vertices(); ++v) {
       if (locked_[v] || !mesh_.vertex_alive(v)) continue;
-      for (int n : mesh_.neighbours(v)) from[v].push_back({quadrics_.collapse_error(v, n), v, n, stamp_[v]});
+      for (int n : mesh_.neighbours(v))
+        from[v].push_back({quadrics_.collapse_error(v, n), v, n, stamp_[v], stamp_[n]});
     }
+    for (auto& list : refused_) list.clear();
     std::vector<Candidate> all;
     for (const auto& list : from) all.insert(all.end(), list.begin(), list.end());
     heap_ = CandidateHeap(Later(), std::move(all));
   }
 
-  // Collapses v0 onto v1 and renews the candidates of v1 and its neighbours (whose triangles,
-  // quadrics or attached points changed).
+  // Collapses v0 onto v1, renews the collapses along v1's edges (whose quadric changed) and pushes
+  // again those refused from v1's neighbours (whose triangles or attached points changed).
   void collapse(int v0, int v1) {
     guard_.before_collapse(v0);
     mesh_.collapse(v0, v1);
     quadrics_.merge(v0, v1);
     parent_[v0] = v1;
     guard_.after_collapse(v1);
-    std::vector<int> ring = mesh_.neighbours(v1);
-    ring.push_back(v1);
-    for (int v : ring) {
-      ++stamp_[v];
-      push_from(v);
+    ++stamp_[v1];
+    refused_[v0].clear();
+    refused_[v1].clear();
+    for (int n : mesh_.neighbours(v1)) {
+      push(v1, n);
+      push(n, v1);
+      for (int other : refused_[n])
+        if (other != v1 && mesh_.vertex_alive(other)) push(n, other);
+      refused_[n].clear();
     }
   }
 
@@ -171,6 +181,7 @@ class FastDecimator {
   DistanceGuard guard_;
   std::vector<char> locked_;
   std::vector<unsigned> stamp_;
+  std::vector<std::vector<int>> refused_;  // per vertex: neighbours it was refused a collapse onto
   std::vector<int> parent_;
   CandidateHeap heap_;
   double min_cos_;
