@@ -16,6 +16,7 @@ struct Vec3 {
   Vec3 operator+(const Vec3& o) const { return Vec3(x[0] + o.x[0], x[1] + o.x[1], x[2] + o.x[2]); }
   Vec3 operator-(const Vec3& o) const { return Vec3(x[0] - o.x[0], x[1] - o.x[1], x[2] - o.x[2]); }
   Vec3 operator*(double s) const { return Vec3(x[0] * s, x[1] * s, x[2] * s); }
+  Vec3 operator/(double s) const { return Vec3(x[0] / s, x[1] / s, x[2] / s); }
   double sqrnorm() const { return x[0] * x[0] + x[1] * x[1] + x[2] * x[2]; }
   double norm() const { return std::sqrt(sqrnorm()); }
 };

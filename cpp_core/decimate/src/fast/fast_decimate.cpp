@@ -10,7 +10,7 @@
 
 #include "../triangle_check.h"
 #include "collapse_mesh.h"
-#include "distance_guard.h"
+#include "../distance_guard.h"
 #include "meshik/decimate.h"
 #include "pose_quadrics.h"
 #include "pose_table.h"
@@ -20,9 +20,9 @@ namespace meshik {
 namespace {
 
 using decimation::CollapseMesh;
-using decimation::DistanceGuard;
 using decimation::PoseQuadrics;
 using decimation::PoseTable;
+using FastDistanceGuard = decimation::DistanceGuard<CollapseMesh, PoseTable>;
 using decimation::Vec3;
 
 // A half-edge collapse v0 -> v1 waiting in the heap, valid while both vertices' stamps (bumped
@@ -178,7 +178,7 @@ class FastDecimator {
   const PoseTable& poses_;
   CollapseMesh mesh_;
   PoseQuadrics quadrics_;
-  DistanceGuard guard_;
+  FastDistanceGuard guard_;
   std::vector<char> locked_;
   std::vector<unsigned> stamp_;
   std::vector<std::vector<int>> refused_;  // per vertex: neighbours it was refused a collapse onto
