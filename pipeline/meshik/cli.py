@@ -192,8 +192,8 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                              "frame when no smaller basis does) or frames (one target per frame)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
     parser.add_argument("--threads", type=_thread_count, default=None, metavar="N",
-                        help="threads of the example-set precompute and of each solve (default: all cores for "
-                             "pose, one per batch worker); the outputs are the same for any count")
+                        help="threads of the example-set precompute, of each solve and of the fast simplifier "
+                             "(default: all cores for pose, one per batch worker); the outputs are the same for any count")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
 
 

@@ -70,7 +70,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
                      them (a batch's --blend / --regions / --handle-stiffness);
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
-    threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
+    threads: for the example-set precompute, the solves and the fast simplifier (None: all cores; the
+             outputs are the same for any count);
     glb: the .glb variant ("quantized", "meshopt" or "draco"; meshik.export.glb_readers says who reads each); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
@@ -120,7 +121,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         f"{len(resolved.handles)} handle vertices, {len(resolved.frame_names)} frames")
 
     target = _target_triangles(simplify, len(meshes.faces)) if simplify is not None else None
-    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier) \
+    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier, threads) \
         if target is not None and simplify_first else None
     pose_meshes = simplified.meshes if simplified is not None else meshes
     if target is None or simplify_first:  # else known once the frames are simplified
@@ -140,7 +141,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
     if target is not None and not simplify_first:
-        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier)
+        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier, threads)
         posed = dataclasses.replace(posed, vertices=frames)
         handles, kept = remap_handles(simplified, resolved.handles)
         _check_glb_size(constraints_path, formats, len(resolved.frame_names), simplified.meshes.rest)

@@ -55,11 +55,11 @@ class SimplifiedMeshes:
 
 
 def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, method: str = "fast",
-             threads: int = 0) -> SimplifiedMeshes:
+             threads: Optional[int] = None) -> SimplifiedMeshes:
     """Simplify an example set to about `target_triangles` triangles with the named method.
 
     handles: #H original vertex indices, locked (each stays a vertex of its own, in place).
-    threads: the fast simplifier's (0: all cores; the same result for any count); unused by "openmesh".
+    threads: the fast simplifier's (None: all cores; the same result for any count); unused by "openmesh".
     Raises PipelineError for an unknown method, a target not below the current triangle count, or a
     mesh the decimators refuse (non-manifold, inconsistently oriented: naming the rest file).
     """
@@ -71,7 +71,7 @@ def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, 
     from meshik import _core
 
     if method == "fast":
-        decimate = functools.partial(_core.decimate_fast, threads=threads)
+        decimate = functools.partial(_core.decimate_fast, threads=0 if threads is None else threads)
     elif hasattr(_core, "decimate"):
         decimate = _core.decimate
     else:
@@ -81,17 +81,17 @@ def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, 
 
 
 def simplify_animation(meshes: ExampleMeshes, frames: np.ndarray, target_triangles: int, handles: np.ndarray,
-                       method: str = "fast") -> Tuple[SimplifiedMeshes, np.ndarray]:
+                       method: str = "fast", threads: Optional[int] = None) -> Tuple[SimplifiedMeshes, np.ndarray]:
     """Simplify an example set and an animation posed from it at full resolution, alike.
 
     frames: #frames by #V by 3 posed positions. The frames join the examples as further poses (in the
     quadric and in the guards), so each simplified frame is its full frame restricted to the kept
-    vertices. Returns (the simplified example set, #frames by #S by 3 simplified frames).
-    Raises PipelineError as simplify does.
+    vertices. threads: as simplify's. Returns (the simplified example set, #frames by #S by 3
+    simplified frames). Raises PipelineError as simplify does.
     """
     count = len(meshes.examples)
     together = replace(meshes, examples=tuple(meshes.examples) + tuple(np.asarray(frames, dtype=np.float64)))
-    simplified = simplify(together, target_triangles, handles, method)
+    simplified = simplify(together, target_triangles, handles, method, threads)
     poses = simplified.meshes.examples
     examples = replace(simplified.meshes, examples=poses[:count])
     return replace(simplified, meshes=examples), np.stack(poses[count:])
