@@ -59,6 +59,16 @@ TEST(DecimateFast, KeepsASubsetLockedVerticesAndReachesTheTarget) {
   EXPECT_EQ(static_cast<long>(result.kept_vertices.size()) - faces * 3 / 2 + faces, 2);
 }
 
+TEST(DecimateFast, StopsAtATetrahedronRatherThanFoldIt) {
+  // an octahedron asked for 1 triangle: a tetrahedron is as far as a closed surface can go
+  const std::vector<double> points = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+  const std::vector<int> octahedron = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+  const DecimationResult result =
+      meshik::decimate_example_set_fast({points.data(), 6, octahedron.data(), 8}, {}, {}, 1, 180.0);
+  EXPECT_EQ(result.triangles.size(), 12u);
+  EXPECT_EQ(result.kept_vertices.size(), 4u);
+}
+
 TEST(DecimateFast, SameResultForAnyThreadCount) {
   const auto& m = tube();
   const DistanceBound bound{0.01, 1.25, 20};

@@ -69,7 +69,19 @@ bool CollapseMesh::collapse_keeps_manifold(int v0, int v1) const {
   const std::vector<int> n0 = neighbours(v0), n1 = neighbours(v1);
   std::vector<int> common;
   std::set_intersection(n0.begin(), n0.end(), n1.begin(), n1.end(), std::back_inserter(common));
-  return common == opposite;
+  if (common != opposite) return false;
+  // no triangle renamed onto v1 may repeat one of v1's (a tetrahedron would fold into two)
+  for (int t : around_[v0]) {
+    const std::array<int, 3>& moved = triangles_[t];
+    if (has_corner(moved, v1)) continue;
+    for (int u : around_[v1]) {
+      const std::array<int, 3>& kept = triangles_[u];
+      int same = 0;
+      for (int c : moved) same += c != v0 && has_corner(kept, c);
+      if (same == 2) return false;
+    }
+  }
+  return true;
 }
 
 void CollapseMesh::collapse(int v0, int v1) {

@@ -30,8 +30,8 @@ class CollapseMesh {
   bool on_border(int v) const;
   // Whether collapsing v0 onto its neighbour v1 keeps the mesh manifold: the edge has one or two
   // triangles, their opposite corners are exactly the common neighbours of v0 and v1 (the link
-  // condition), a border vertex moves only along its border edge, and neither v0 nor an opposite
-  // corner loses all its triangles.
+  // condition), a border vertex moves only along its border edge, neither v0 nor an opposite
+  // corner loses all its triangles, and no triangle would repeat another's corners.
   bool collapse_keeps_manifold(int v0, int v1) const;
   // Moves v0 onto v1: the triangles with both are deleted, v0 is renamed v1 in the others.
   void collapse(int v0, int v1);
