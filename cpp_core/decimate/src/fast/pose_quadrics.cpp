@@ -32,6 +32,7 @@ std::vector<std::array<int, 3>> border_edges(const int* triangles, int num_trian
 PoseQuadrics::PoseQuadrics(const int* triangles, int num_triangles, const PoseTable& poses, int threads)
     : poses_(poses), quadrics_(static_cast<size_t>(poses.num_vertices()) * poses.count()) {
   const std::vector<std::array<int, 3>> border = border_edges(triangles, num_triangles, poses.num_vertices());
+  (void)threads;  // unused without OpenMP
   // one pose per thread: each quadric adds its planes in triangle order whatever the thread count
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int p = 0; p < poses.count(); ++p) {
