@@ -82,27 +82,33 @@ def test_keeps_detail_that_moves_in_an_example(method, decimate):
     assert aware_error < 0.25 * rest_only_error
 
 
-@pytest.mark.parametrize("method", SIMPLIFIERS)
-def test_names_the_non_manifold_triangle(method):
+def test_openmesh_names_the_non_manifold_triangle():
     vertices, faces = grid(size=5)
     faces = np.concatenate([faces, faces[:1]])  # a triangle twice: its edges have three triangles
     meshes = ExampleMeshes(rest=vertices, faces=faces, examples=(vertices,), rest_path="grid.obj", example_paths=("e",))
     with pytest.raises(PipelineError, match=r"^grid.obj: triangle 32 and triangle 0 both run along the edge"):
-        simplify(meshes, 10, np.array([0]), method)
+        simplify(meshes, 10, np.array([0]), "openmesh")
 
 
-def test_fast_names_the_non_manifold_vertex():
-    """Two grids touching at one corner vertex: its triangles form two fans."""
+def test_fast_keeps_the_non_manifold_parts():
+    """Two grids touching at one corner vertex (its triangles form two fans), one triangle listed
+    twice: fast simplifies the rest and keeps those vertices; every pose stays on its own vertices."""
     vertices, faces = grid(size=5)
     shifted = vertices + np.array([-1.0, -1.0, 0.5])
     corner = int(np.argmin(vertices.sum(axis=1)))  # the first grid's corner (0, 0) ...
     far = int(np.argmax(shifted.sum(axis=1)))      # ... is the second grid's far corner
     second = np.where(faces == far, corner, faces + len(vertices))
     both = np.concatenate([vertices, shifted])
-    meshes = ExampleMeshes(rest=both, faces=np.concatenate([faces, second]), examples=(both,), rest_path="pair.obj",
-                           example_paths=("e",))
-    with pytest.raises(PipelineError, match=rf"^pair.obj: vertex {corner} joins \d+ triangles that form more than one fan"):
-        simplify(meshes, 20, np.array([1]), "fast")
+    all_faces = np.concatenate([faces, second, faces[5:6]])
+    raised = both + np.array([0.0, 0.0, 0.1]) * both[:, :1]
+    meshes = ExampleMeshes(rest=both, faces=all_faces, examples=(raised,), rest_path="pair.obj", example_paths=("e",))
+    result = simplify(meshes, 20, np.array([1]), "fast")
+    assert len(result.meshes.faces) <= 20
+    for vertex in (corner, *faces[5]):
+        assert vertex in result.source_vertex
+    np.testing.assert_array_equal(result.meshes.examples[0], raised[result.source_vertex])
+    with pytest.raises(PipelineError, match=r"^pair.obj: "):
+        simplify(meshes, 20, np.array([1]), "openmesh")
 
 
 def test_bad_requests():

@@ -61,7 +61,8 @@ def simplify(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray, 
     handles: #H original vertex indices, locked (each stays a vertex of its own, in place).
     threads: the fast simplifier's (None: all cores; the same result for any count); unused by "openmesh".
     Raises PipelineError for an unknown method, a target not below the current triangle count, or a
-    mesh the decimators refuse (non-manifold, inconsistently oriented: naming the rest file).
+    mesh the decimator refuses (naming the rest file): a triangle with a vertex out of range or twice,
+    and for "openmesh" a non-manifold or inconsistently oriented mesh ("fast" keeps those vertices).
     """
     if method not in SIMPLIFIERS:
         raise PipelineError(f"unknown simplifier {method!r} (choose from: {', '.join(SIMPLIFIERS)})")
@@ -110,7 +111,7 @@ def _decimate(meshes: ExampleMeshes, target_triangles: int, handles: np.ndarray,
             meshes.rest, faces, list(meshes.examples), locked, target_triangles,
             max_distance=DISTANCE_BOUND_FACTOR * rest_error if rest_error > 0 else np.inf,
             relax_factor=RELAX_FACTOR, max_relaxations=MAX_RELAXATIONS)
-    except ValueError as error:  # meshik.InputError: a non-manifold or inconsistently oriented mesh
+    except ValueError as error:  # meshik.InputError: a bad triangle (openmesh: also a non-manifold one)
         raise PipelineError(f"{meshes.rest_path}: {error}") from None
     kept = np.asarray(kept, dtype=np.int64)
     simplified = replace(meshes, rest=meshes.rest[kept], faces=np.asarray(simplified_faces, dtype=np.int64),

@@ -62,8 +62,10 @@ DecimationResult decimate_example_set(const MeshView& rest, const std::vector<co
 // popped; a refused collapse waits until its neighbourhood changes or the bound is relaxed.
 // Half-edge collapses only: the kept vertices are a subset of the original ones, locked ones kept.
 // threads: 0 for all cores, 1 for none; the result is the same for any count.
-// Throws InputError for a vertex whose triangles form more than one fan, as well as for what
-// decimate_example_set refuses.
+// Where the mesh is not an oriented manifold (an edge of three or more triangles, two triangles of
+// opposite orientation along an edge, a vertex whose triangles form more than one fan) the vertices
+// are kept as if locked, and the rest is decimated. Throws InputError for a triangle with a vertex
+// out of range or repeated, a locked id out of range or a bad target or bound.
 DecimationResult decimate_example_set_fast(const MeshView& rest, const std::vector<const double*>& examples,
                                            const std::vector<int>& locked, int target_triangles,
                                            double max_normal_change_degrees = 60.0,

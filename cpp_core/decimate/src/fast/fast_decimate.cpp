@@ -73,7 +73,7 @@ class FastDecimator {
         mesh_(rest.triangles, rest.num_triangles, rest.num_vertices),
         quadrics_(rest.triangles, rest.num_triangles, poses, threads),
         guard_(mesh_, poses),
-        locked_(rest.num_vertices, 0),
+        locked_(decimation::irregular_vertices(rest)),
         stamp_(rest.num_vertices, 0),
         refused_(rest.num_vertices),
         parent_(rest.num_vertices),
@@ -194,8 +194,7 @@ DecimationResult decimate_example_set_fast(const MeshView& rest, const std::vect
                                            const std::vector<int>& locked, int target_triangles,
                                            double max_normal_change_degrees, const DistanceBound& bound, int threads) {
   decimation::check_request(rest.num_vertices, locked, target_triangles, bound);
-  decimation::check_triangles(rest);
-  decimation::check_vertex_fans(rest);
+  decimation::check_corners(rest);
   threads = decimation::resolve_threads(threads);
   std::vector<const double*> positions(1, rest.vertices);
   positions.insert(positions.end(), examples.begin(), examples.end());
