@@ -1,6 +1,7 @@
 #include "constraint_file.h"
 
 #include "meshik/constraints/constraint_file.h"
+#include "meshik/option_names.h"
 
 #include <algorithm>
 #include <climits>
@@ -31,9 +32,8 @@ std::vector<int> vertexRegions(const meshik::constraints::ConstraintDocument& do
 // The solver options `document` sets (the reader has checked their values).
 FileSolverOptions fileSolverOptions(const meshik::constraints::ConstraintDocument& document) {
   FileSolverOptions options;
-  if (document.feature_space)
-    options.feature_space = *document.feature_space == "linear" ? FeatureSpace::kLinear : FeatureSpace::kNonlinear;
-  if (document.blend) options.blend = *document.blend == "free" ? Blend::kFree : Blend::kAffine;
+  if (document.feature_space) options.feature_space = feature_space_from_name(*document.feature_space);
+  if (document.blend) options.blend = blend_from_name(*document.blend);
   if (document.regions && document.regions->groups.empty())
     options.regions = document.regions->automatic
                           ? kAutomaticRegions

@@ -5,6 +5,8 @@
 
 #include <QStringList>
 
+#include "meshik/option_names.h"
+
 #include <cmath>
 #include <optional>
 
@@ -123,9 +125,9 @@ ChosenSolverOptions chooseSolverOptions(const RichParameterList& parameters, con
       "feature space", feature_space == kFromFileEntry,
       feature_space == 1 ? FeatureSpace::kLinear : FeatureSpace::kNonlinear, file.feature_space,
       defaults.feature_space,
-      [](FeatureSpace f) { return QString(f == FeatureSpace::kLinear ? "linear" : "nonlinear"); });
+      [](FeatureSpace f) { return QString(feature_space_name(f)); });
   options.blend = log.choose("blend", blend == kFromFileEntry, blend == 1 ? Blend::kFree : Blend::kAffine, file.blend,
-                             defaults.blend, [](Blend b) { return QString(b == Blend::kFree ? "free" : "affine"); });
+                             defaults.blend, [](Blend b) { return QString(blend_name(b)); });
   options.regions =
       log.choose("regions", regions == kFromFile, regions == 0 ? kAutomaticRegions : regions, file.regions,
                  defaults.regions, [](int r) { return r == kAutomaticRegions ? QString("auto") : QString::number(r); });

@@ -16,6 +16,7 @@
 
 #include "decimate_module.h"
 #include "meshik/meshik.h"
+#include "meshik/option_names.h"
 #include "meshik/thread_limit.h"
 #include "owned_array.h"
 
@@ -106,15 +107,13 @@ nb::object index_array(const std::vector<int>& indices) {
 
 // "nonlinear" or "linear" as a FeatureSpace; InputError otherwise.
 meshik::FeatureSpace parse_feature_space(const std::string& name) {
-  if (name == "nonlinear") return meshik::FeatureSpace::kNonlinear;
-  if (name == "linear") return meshik::FeatureSpace::kLinear;
+  if (const auto feature_space = meshik::feature_space_from_name(name)) return *feature_space;
   throw meshik::InputError("feature_space must be 'nonlinear' or 'linear', got '" + name + "'");
 }
 
 // "affine" or "free" as a Blend; InputError otherwise.
 meshik::Blend parse_blend(const std::string& name) {
-  if (name == "affine") return meshik::Blend::kAffine;
-  if (name == "free") return meshik::Blend::kFree;
+  if (const auto blend = meshik::blend_from_name(name)) return *blend;
   throw meshik::InputError("blend must be 'affine' or 'free', got '" + name + "'");
 }
 
@@ -443,7 +442,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("num_regions", [](const PySolver& s) { return s.solver->num_regions(); })
       .def_prop_ro("num_weights", [](const PySolver& s) { return s.solver->num_weights(); })
       .def_prop_ro("blend_mode", [](const PySolver& s) {
-        return std::string(s.solver->options().blend == meshik::Blend::kFree ? "free" : "affine");
+        return std::string(meshik::blend_name(s.solver->options().blend));
       })
       .def_prop_ro("triangle_regions", [](const PySolver& s) { return index_array(s.solver->triangle_regions()); },
                    "(m,) int64: the region with the largest share of each face")

@@ -168,8 +168,9 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                         help="with --simplify: pose the simplified examples instead (faster per frame, but the "
                              "simplified mesh may choose other example weights: a limb can move differently)")
     parser.add_argument("--simplifier", choices=("fast", "openmesh"), default="fast",
-                        help="fast: fast-simplification's collapses replayed on every example; openmesh: OpenMesh decimater "
-                             "with handles locked and the error summed over all poses (default fast)")
+                        help="the decimator (both lock the handles, sum the error over all poses and bound the "
+                             "distance to the full surface in every pose): fast, MeshIK's own; openmesh, OpenMesh's "
+                             "decimater, several times slower (default fast)")
     parser.add_argument("--format", dest="formats", default="drc,glb", metavar="LIST", help=_FORMAT_HELP)
     parser.add_argument("--feature-space", choices=("nonlinear", "linear"), default=None,
                         help="override the constraint file's feature space (default: the file's, else nonlinear)")
@@ -191,8 +192,8 @@ def _job_options(parser: argparse.ArgumentParser) -> None:
                              "frame when no smaller basis does) or frames (one target per frame)")
     parser.add_argument("--force", action="store_true", help="run even when the outputs are already complete")
     parser.add_argument("--threads", type=_thread_count, default=None, metavar="N",
-                        help="threads of the example-set precompute and of each solve (default: all cores for "
-                             "pose, one per batch worker); the outputs are the same for any count")
+                        help="threads of the example-set precompute, of each solve and of the fast simplifier "
+                             "(default: all cores for pose, one per batch worker); the outputs are the same for any count")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress output (errors are still printed)")
 
 

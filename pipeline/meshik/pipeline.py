@@ -39,7 +39,8 @@ from meshik.terminal_text import one_line
 from meshik.posing.simplify import SIMPLIFIERS, SimplifiedMeshes, remap_handles, simplify as simplify_meshes, simplify_animation
 from meshik.outputs.staging import REPORT_NAME, StagedOutput, check_not_inputs, check_writable, is_complete, read_report
 
-REPORT_VERSION = 2
+# 3: the fast simplifier became MeshIK's own decimator (other meshes; no "snapped_vertices"): redo older jobs
+REPORT_VERSION = 3
 DEFAULT_FORMATS = ("drc", "glb")
 GLB_VARIANTS = ("quantized", "meshopt", "draco")
 DEFAULT_POSITION_BITS = 14
@@ -69,7 +70,8 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
                      them (a batch's --blend / --regions / --handle-stiffness);
     force: run even when out_dir already holds the complete outputs of the same job;
     example_cache: an ExampleSetCache (meshik.posing.example_cache) to take the meshes and features from;
-    threads: for the example-set precompute (None: all cores; the outputs are the same for any count);
+    threads: for the example-set precompute, the solves and the fast simplifier (None: all cores; the
+             outputs are the same for any count);
     glb: the .glb variant ("quantized", "meshopt" or "draco"; meshik.export.glb_readers says who reads each); position_bits: the grid of the
     meshopt and quantized .glb (1..15; the .drc frames and the Draco .glb use quantization_bits);
     glb_targets: their morph targets, "basis" (fewest within the grid's rounding) or "frames" (one per frame);
@@ -119,7 +121,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
         f"{len(resolved.handles)} handle vertices, {len(resolved.frame_names)} frames")
 
     target = _target_triangles(simplify, len(meshes.faces)) if simplify is not None else None
-    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier) \
+    simplified = simplify_meshes(meshes, target, resolved.handles, simplifier, threads) \
         if target is not None and simplify_first else None
     pose_meshes = simplified.meshes if simplified is not None else meshes
     if target is None or simplify_first:  # else known once the frames are simplified
@@ -139,7 +141,7 @@ def pose_job(constraints_path, out_dir, simplify: Optional[Union[int, float]] = 
                                frame_labels=[f"{constraints_path}: frame {f}" for f in resolved.frame_names])
     clock.lap("pose")
     if target is not None and not simplify_first:
-        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier)
+        simplified, frames = simplify_animation(meshes, posed.vertices, target, resolved.handles, simplifier, threads)
         posed = dataclasses.replace(posed, vertices=frames)
         handles, kept = remap_handles(simplified, resolved.handles)
         _check_glb_size(constraints_path, formats, len(resolved.frame_names), simplified.meshes.rest)
@@ -348,7 +350,6 @@ def _report(name, key, constraint_set, meshes, simplified, simplification: Tuple
         "simplification": None if simplified is None else {
             "simplifier": simplifier, "posed": "simplified example set" if simplify_first else "full resolution",
             "vertices": len(simplified.meshes.rest), "triangles": len(simplified.meshes.faces),
-            "snapped_vertices": simplified.snapped,
             "distance_bound": _finite_or_none(simplified.distance_bound), "bound_relaxations": simplified.relaxations,
             "merged_handle_vertices": int(len(resolved.handles) - len(np.unique(simplified.vertex_map[resolved.handles])))},
         "solver": dict(solver_options, handle_vertices=len(resolved.handles), posed_vertices=posed_count),

@@ -59,8 +59,7 @@ def third_party_imports() -> Set[str]:
 
 def test_every_library_imported_at_run_time_is_a_dependency():
     imports = third_party_imports()
-    assert {"numpy", "pymeshlab", "DracoPy", "threadpoolctl", "dask", "distributed", "rich", "PIL",
-            "fast_simplification"} <= imports
+    assert {"numpy", "pymeshlab", "DracoPy", "threadpoolctl", "dask", "distributed", "rich", "PIL"} <= imports
     distributions = packages_distributions()
     dependencies = set(declared("dependencies"))
     missing = {name: distributions.get(name) for name in imports

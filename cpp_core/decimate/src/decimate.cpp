@@ -10,9 +10,10 @@
 #include <cmath>
 #include <string>
 #include <limits>
-#include <unordered_map>
 
 #include "decimation_mesh.h"
+#include "quadric.h"
+#include "triangle_check.h"
 #include "pose_distance_module.h"
 
 namespace meshik {
@@ -20,30 +21,8 @@ namespace {
 
 using decimation::Mesh;
 using decimation::Poses;
+using decimation::Quadric;
 using decimation::Vec;
-
-// Symmetric 4 by 4 error quadric of Garland and Heckbert: the sum of w (n.x + d)^2 over planes.
-// Stored as its 10 distinct entries.
-struct Quadric {
-  std::array<double, 10> q{};
-
-  // Adds the plane n.x + d = 0 (n of unit length) with weight w.
-  void add_plane(const Vec& n, double d, double w) {
-    const double a = n[0], b = n[1], c = n[2];
-    const double terms[10] = {a * a, a * b, a * c, a * d, b * b, b * c, b * d, c * c, c * d, d * d};
-    for (int i = 0; i < 10; ++i) q[i] += w * terms[i];
-  }
-  Quadric& operator+=(const Quadric& other) {
-    for (int i = 0; i < 10; ++i) q[i] += other.q[i];
-    return *this;
-  }
-  // The error x^T Q x at the point p (homogeneous coordinate 1).
-  double error(const Vec& p) const {
-    const double x = p[0], y = p[1], z = p[2];
-    return q[0] * x * x + 2 * q[1] * x * y + 2 * q[2] * x * z + 2 * q[3] * x + q[4] * y * y + 2 * q[5] * y * z +
-           2 * q[6] * y + q[7] * z * z + 2 * q[8] * z + q[9];
-  }
-};
 
 // Decimater module: priority = quadric error summed over all poses at the kept vertex;
 // illegal when a remaining triangle would flip (beyond a limit) or degenerate in any pose.
@@ -96,7 +75,7 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
         const double length = side.norm();
         if (length <= 0.0) continue;
         side /= length;
-        const double weight = kBoundaryWeight * edge.sqrnorm();
+        const double weight = decimation::kBoundaryPlaneWeight * edge.sqrnorm();
         const double d = -OpenMesh::dot(side, poses_->at(p, from));
         quadric(p, from).add_plane(side, d, weight);
         quadric(p, to).add_plane(side, d, weight);
@@ -128,8 +107,6 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
   const std::vector<int>& parents() const { return parent_; }
 
  private:
-  static constexpr double kBoundaryWeight = 10.0;
-
   Quadric& quadric(int pose, int vertex) { return quadrics_[static_cast<size_t>(pose) * poses_->num_vertices + vertex]; }
 
   // Whether moving v0 onto v1 leaves every remaining triangle around v0 non-degenerate and
@@ -163,37 +140,10 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
   std::vector<int> parent_;
 };
 
-// InputError unless every triangle has three distinct in-range vertices and no directed edge is
-// used twice (which would mean inconsistent orientation or an edge shared by more than two
-// triangles); OpenMesh asserts on such input instead of refusing it.
-void check_triangles(const MeshView& rest) {
-  std::unordered_map<long long, int> directed_edges;
-  const auto describe = [](int f) { return "triangle " + std::to_string(f); };
-  for (int f = 0; f < rest.num_triangles; ++f) {
-    const int* t = rest.triangles + 3 * static_cast<size_t>(f);
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] < 0 || t[k] >= rest.num_vertices)
-        throw InputError(describe(f) + " has vertex " + std::to_string(t[k]) + ", out of range (the mesh has " +
-                         std::to_string(rest.num_vertices) + " vertices)");
-    }
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-      throw InputError(describe(f) + " repeats a vertex (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
-                       std::to_string(t[2]) + ")");
-    for (int k = 0; k < 3; ++k) {
-      const long long key = static_cast<long long>(t[k]) * rest.num_vertices + t[(k + 1) % 3];
-      const auto inserted = directed_edges.emplace(key, f);
-      if (!inserted.second)
-        throw InputError(describe(f) + " and " + describe(inserted.first->second) + " both run along the edge from vertex " +
-                         std::to_string(t[k]) + " to " + std::to_string(t[(k + 1) % 3]) +
-                         ": the mesh is not consistently oriented or not manifold there");
-    }
-  }
-}
-
 // OpenMesh mesh of the rest pose (after check_triangles); throws InputError for a triangle that
 // cannot join a manifold mesh (a non-manifold vertex).
 Mesh build_mesh(const MeshView& rest) {
-  check_triangles(rest);
+  decimation::check_triangles(rest);
   Mesh mesh;
   std::vector<Mesh::VertexHandle> handles(rest.num_vertices);
   for (int v = 0; v < rest.num_vertices; ++v) {
@@ -225,20 +175,12 @@ size_t remaining_triangles(const Mesh& mesh) {
 DecimationResult decimate_example_set(const MeshView& rest, const std::vector<const double*>& examples,
                                       const std::vector<int>& locked, int target_triangles,
                                       double max_normal_change_degrees, const DistanceBound& bound) {
-  if (target_triangles < 1) throw InputError("the target triangle count must be at least 1");
-  if (!(bound.max_distance > 0.0)) throw InputError("the distance bound must be positive (infinity for none)");
-  if (!(bound.relax_factor > 1.0) || bound.max_relaxations < 0)
-    throw InputError("the distance bound's relax factor must exceed 1 and its relaxation count be at least 0");
+  decimation::check_request(rest.num_vertices, locked, target_triangles, bound);
   Mesh mesh = build_mesh(rest);
   mesh.request_vertex_status();
   mesh.request_edge_status();
   mesh.request_face_status();
-  for (int v : locked) {
-    if (v < 0 || v >= rest.num_vertices)
-      throw InputError("locked vertex " + std::to_string(v) + " is out of range (the mesh has " +
-                       std::to_string(rest.num_vertices) + " vertices)");
-    mesh.status(mesh.vertex_handle(v)).set_locked(true);
-  }
+  for (int v : locked) mesh.status(mesh.vertex_handle(v)).set_locked(true);
   Poses poses;
   poses.num_vertices = rest.num_vertices;
   poses.positions.push_back(rest.vertices);

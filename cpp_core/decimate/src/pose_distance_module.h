@@ -1,14 +1,5 @@
-// Decimater module that bounds, in every pose, the distance of the removed vertices from the
-// simplified surface (a multi-pose Hausdorff-style guard for OpenMesh's decimater).
-//
-// Both ways: every removed original vertex is attached to one remaining triangle, and every
-// original triangle to the remaining triangle that covers it (at first, itself). A collapse
-// v0 -> v1 is refused unless, in every pose, (1) v0 and every vertex attached to the triangles
-// around v0 lie within the bound of one of the triangles that replace them (the same one in every
-// pose), and (2) sample points of each replacing triangle (centroid, edge midpoints, three inner
-// points) lie within the bound of an original triangle covered by the triangles around v0. After
-// the collapse those vertices and original triangles are attached to the triangle around v1
-// nearest to them.
+// Decimater module that bounds, in every pose, the distance between the simplified and the original
+// surface (OpenMesh's decimater): the distance_guard.h guard on an OpenMesh mesh.
 // Binary: it only allows or refuses; the priority comes from another module.
 #pragma once
 
@@ -16,12 +7,30 @@
 
 #include <array>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "decimation_mesh.h"
+#include "distance_guard.h"
 
 namespace meshik {
 namespace decimation {
+
+// DistanceGuard's view of an OpenMesh mesh decimated without garbage collection: face and vertex
+// indices are the original triangle and vertex ids throughout.
+class OpenMeshTriangles {
+ public:
+  explicit OpenMeshTriangles(const Mesh& mesh) : mesh_(mesh) {}
+  int num_triangles() const { return static_cast<int>(mesh_.n_faces()); }
+  bool triangle_alive(int t) const { return !mesh_.status(mesh_.face_handle(t)).deleted(); }
+  // The corners of triangle t, in OpenMesh's order.
+  std::array<int, 3> corners(int t) const;
+  // The triangles around vertex v, in OpenMesh's order.
+  std::vector<int> triangles_around(int v) const;
+
+ private:
+  const Mesh& mesh_;
+};
 
 class ModPoseDistance : public OpenMesh::Decimater::ModBaseT<Mesh> {
  public:
@@ -30,8 +39,7 @@ class ModPoseDistance : public OpenMesh::Decimater::ModBaseT<Mesh> {
   DECIMATER_MODNAME(PoseDistance)
 
   // DecimaterT::add constructs modules from the mesh alone: configure() sets the rest.
-  explicit ModPoseDistance(Mesh& mesh);
-  ~ModPoseDistance() override;
+  explicit ModPoseDistance(Mesh& mesh) : Base(mesh, true), triangles_(mesh) {}
 
   // poses: every pose's positions (kept alive by the caller); max_distance: the bound (infinity:
   // never refuse, only track). Resets least_refused().
@@ -39,39 +47,18 @@ class ModPoseDistance : public OpenMesh::Decimater::ModBaseT<Mesh> {
 
   void initialize() override;
   float collapse_priority(const CollapseInfo& ci) override;
-  void preprocess_collapse(const CollapseInfo& ci) override;
-  void postprocess_collapse(const CollapseInfo& ci) override;
+  void preprocess_collapse(const CollapseInfo& ci) override { guard_->before_collapse(ci.v0.idx()); }
+  void postprocess_collapse(const CollapseInfo& ci) override { guard_->after_collapse(ci.v1.idx()); }
 
-  // A lower bound of the least bound under which a collapse refused since configure() would have
-  // been allowed (infinity if none was refused).
-  double least_refused() const { return least_refused_; }
-
-  // The larger, over all poses, of: the distance of a removed vertex from the triangle it is
-  // attached to, and the distance of a sample point of a remaining triangle from the original
-  // triangles it covers (the measures the bound applies to); 0 when nothing was removed.
-  double worst_distance();
+  // See DistanceGuard::least_refused and worst_distance.
+  double least_refused() const { return guard_->least_refused(); }
+  double worst_distance() const { return guard_->worst_distance(); }
 
  private:
-  // The three original vertex ids of face `face`, with `replaced` (if a corner) swapped for `by`.
-  std::array<int, 3> corners(Mesh::FaceHandle face, Mesh::VertexHandle replaced, Mesh::VertexHandle by);
-  // Largest distance over the poses from original vertex `point` to the triangle `corners`; stops
-  // early (returning a value above the limit) once a pose exceeds `limit`.
-  double pose_distance(int point, const std::array<int, 3>& corners, double limit) const;
-  // Largest distance, over the sample points of the triangle `corners` and the poses, from the
-  // nearest original triangle in `covered` (ids into original_triangles_); stops early (returning
-  // a value above the limit) once a sample exceeds `limit`.
-  double surface_gap(const std::array<int, 3>& corners, const std::vector<int>& covered, double limit) const;
-  // The original triangles covered by the faces around `vertex`.
-  std::vector<int> covered_around(Mesh::VertexHandle vertex);
-
+  OpenMeshTriangles triangles_;
   const Poses* poses_ = nullptr;
   double max_distance_ = std::numeric_limits<double>::infinity();
-  double least_refused_ = std::numeric_limits<double>::infinity();
-  OpenMesh::FPropHandleT<std::vector<int>> attached_;  // per face: removed vertices attached to it
-  OpenMesh::FPropHandleT<std::vector<int>> covered_;   // per face: original triangles it covers
-  std::vector<std::array<int, 3>> original_triangles_;  // #F original vertex ids of each triangle
-  std::vector<int> moving_;                            // vertices being re-attached by a collapse
-  std::vector<int> moving_triangles_;                  // original triangles being re-attached
+  std::unique_ptr<DistanceGuard<OpenMeshTriangles, Poses>> guard_;
 };
 
 }  // namespace decimation
