@@ -14,6 +14,7 @@
 #include "decimation_mesh.h"
 #include "quadric.h"
 #include "triangle_check.h"
+#include "triangle_soundness.h"
 #include "pose_distance_module.h"
 
 namespace meshik {
@@ -54,12 +55,8 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
         std::array<int, 3> v;
         int i = 0;
         for (auto vh : m.fv_range(fh)) v[i++] = vh.idx();
-        const Vec a = poses_->at(p, v[0]), b = poses_->at(p, v[1]), c = poses_->at(p, v[2]);
-        Vec normal = OpenMesh::cross(b - a, c - a);
-        const double twice_area = normal.norm();
-        if (twice_area <= 0.0) continue;
-        normal /= twice_area;
-        for (int k = 0; k < 3; ++k) quadric(p, v[k]).add_plane(normal, -OpenMesh::dot(normal, a), 0.5 * twice_area);
+        decimation::add_triangle_plane(poses_->at(p, v[0]), poses_->at(p, v[1]), poses_->at(p, v[2]), quadric(p, v[0]),
+                                       quadric(p, v[1]), quadric(p, v[2]));
       }
       for (auto heh : m.halfedges()) {
         if (!m.is_boundary(heh)) continue;
@@ -68,17 +65,8 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
         std::array<int, 3> v;
         int i = 0;
         for (auto vh : m.fv_range(face)) v[i++] = vh.idx();
-        const Vec a = poses_->at(p, v[0]), b = poses_->at(p, v[1]), c = poses_->at(p, v[2]);
-        const Vec face_normal = OpenMesh::cross(b - a, c - a);
-        const Vec edge = poses_->at(p, to) - poses_->at(p, from);
-        Vec side = OpenMesh::cross(edge, face_normal);
-        const double length = side.norm();
-        if (length <= 0.0) continue;
-        side /= length;
-        const double weight = decimation::kBoundaryPlaneWeight * edge.sqrnorm();
-        const double d = -OpenMesh::dot(side, poses_->at(p, from));
-        quadric(p, from).add_plane(side, d, weight);
-        quadric(p, to).add_plane(side, d, weight);
+        decimation::add_border_plane(poses_->at(p, from), poses_->at(p, to), poses_->at(p, v[0]), poses_->at(p, v[1]),
+                                     poses_->at(p, v[2]), quadric(p, from), quadric(p, to));
       }
     }
     parent_.resize(n);
@@ -122,13 +110,8 @@ class ModPoseQuadric : public OpenMesh::Decimater::ModBaseT<Mesh> {
         v[i++] = vh.idx();
       }
       for (int p = 0; p < poses_->count(); ++p) {
-        std::array<Vec, 3> corner = {poses_->at(p, v[0]), poses_->at(p, v[1]), poses_->at(p, v[2])};
-        const Vec before = OpenMesh::cross(corner[1] - corner[0], corner[2] - corner[0]);
-        corner[moved] = poses_->at(p, ci.v1.idx());
-        const Vec after = OpenMesh::cross(corner[1] - corner[0], corner[2] - corner[0]);
-        const double before_norm = before.norm(), after_norm = after.norm();
-        if (after_norm <= 1e-12 * std::max(before_norm, 1e-300)) return false;
-        if (OpenMesh::dot(before, after) < min_cos_ * before_norm * after_norm) return false;
+        const std::array<Vec, 3> corner = {poses_->at(p, v[0]), poses_->at(p, v[1]), poses_->at(p, v[2])};
+        if (!decimation::moved_triangle_is_sound(corner, moved, poses_->at(p, ci.v1.idx()), min_cos_)) return false;
       }
     }
     return true;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 
 namespace meshik {
 namespace decimation {
@@ -34,6 +35,37 @@ struct Quadric {
 // Weight of the plane through an open border edge, perpendicular to its triangle, per squared edge
 // length: keeps borders in place.
 constexpr double kBoundaryPlaneWeight = 10.0;
+
+// Takes a triangle's corners a, b, c in one pose and the quadrics of those corners (qa, qb, qc);
+// adds the triangle's plane to each, weighted by its area (nothing for a degenerate triangle).
+// Vec: as Quadric's, with -, / by a double, norm() and a cross() and dot() found next to it.
+template <class Vec>
+void add_triangle_plane(const Vec& a, const Vec& b, const Vec& c, Quadric& qa, Quadric& qb, Quadric& qc) {
+  const Vec normal = cross(b - a, c - a);
+  const double twice_area = normal.norm();
+  if (twice_area <= 0.0) return;
+  const Vec unit = normal / twice_area;
+  const double d = -dot(unit, a);
+  for (Quadric* q : {&qa, &qb, &qc}) q->add_plane(unit, d, 0.5 * twice_area);
+}
+
+// Takes an open border edge from -> to, the corners a, b, c of its triangle (one pose) and the
+// quadrics of the edge's ends; adds to both the plane through the edge perpendicular to the
+// triangle, weighted by kBoundaryPlaneWeight times the squared edge length (nothing when the
+// triangle is degenerate). Vec: as add_triangle_plane's.
+template <class Vec>
+void add_border_plane(const Vec& from, const Vec& to, const Vec& a, const Vec& b, const Vec& c, Quadric& q_from,
+                      Quadric& q_to) {
+  const Vec along = to - from;
+  const Vec side = cross(along, cross(b - a, c - a));
+  const double length = side.norm();
+  if (length <= 0.0) return;
+  const Vec unit = side / length;
+  const double d = -dot(unit, from);
+  const double weight = kBoundaryPlaneWeight * along.sqrnorm();
+  q_from.add_plane(unit, d, weight);
+  q_to.add_plane(unit, d, weight);
+}
 
 }  // namespace decimation
 }  // namespace meshik

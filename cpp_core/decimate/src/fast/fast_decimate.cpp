@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../triangle_check.h"
+#include "../triangle_soundness.h"
 #include "collapse_mesh.h"
 #include "../distance_guard.h"
 #include "meshik/decimate.h"
@@ -52,13 +53,8 @@ bool keeps_triangles_sound(const CollapseMesh& mesh, const PoseTable& poses, int
     if (c[0] == v1 || c[1] == v1 || c[2] == v1) continue;
     const int moved = c[0] == v0 ? 0 : (c[1] == v0 ? 1 : 2);
     for (int p = 0; p < poses.count(); ++p) {
-      Vec3 corner[3] = {poses.at(p, c[0]), poses.at(p, c[1]), poses.at(p, c[2])};
-      const Vec3 before = cross(corner[1] - corner[0], corner[2] - corner[0]);
-      corner[moved] = poses.at(p, v1);
-      const Vec3 after = cross(corner[1] - corner[0], corner[2] - corner[0]);
-      const double before_norm = before.norm(), after_norm = after.norm();
-      if (after_norm <= 1e-12 * std::max(before_norm, 1e-300)) return false;
-      if (dot(before, after) < min_cos * before_norm * after_norm) return false;
+      const std::array<Vec3, 3> corner = {poses.at(p, c[0]), poses.at(p, c[1]), poses.at(p, c[2])};
+      if (!decimation::moved_triangle_is_sound(corner, moved, poses.at(p, v1), min_cos)) return false;
     }
   }
   return true;

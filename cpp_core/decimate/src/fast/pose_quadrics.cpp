@@ -38,25 +38,13 @@ PoseQuadrics::PoseQuadrics(const int* triangles, int num_triangles, const PoseTa
   for (int p = 0; p < poses.count(); ++p) {
     for (int t = 0; t < num_triangles; ++t) {
       const int* v = triangles + 3 * static_cast<size_t>(t);
-      const Vec3 a = poses.at(p, v[0]), b = poses.at(p, v[1]), c = poses.at(p, v[2]);
-      const Vec3 normal = cross(b - a, c - a);
-      const double twice_area = normal.norm();
-      if (twice_area <= 0.0) continue;
-      const Vec3 unit = normal * (1.0 / twice_area);
-      for (int k = 0; k < 3; ++k) at(v[k], p).add_plane(unit, -dot(unit, a), 0.5 * twice_area);
+      add_triangle_plane(poses.at(p, v[0]), poses.at(p, v[1]), poses.at(p, v[2]), at(v[0], p), at(v[1], p),
+                         at(v[2], p));
     }
     for (const auto& edge : border) {
       const int* v = triangles + 3 * static_cast<size_t>(edge[2]);
-      const Vec3 a = poses.at(p, v[0]), b = poses.at(p, v[1]), c = poses.at(p, v[2]);
-      const Vec3 along = poses.at(p, edge[1]) - poses.at(p, edge[0]);
-      const Vec3 side = cross(along, cross(b - a, c - a));
-      const double length = side.norm();
-      if (length <= 0.0) continue;
-      const Vec3 unit = side * (1.0 / length);
-      const double d = -dot(unit, poses.at(p, edge[0]));
-      const double weight = kBoundaryPlaneWeight * along.sqrnorm();
-      at(edge[0], p).add_plane(unit, d, weight);
-      at(edge[1], p).add_plane(unit, d, weight);
+      add_border_plane(poses.at(p, edge[0]), poses.at(p, edge[1]), poses.at(p, v[0]), poses.at(p, v[1]),
+                       poses.at(p, v[2]), at(edge[0], p), at(edge[1], p));
     }
   }
 }
