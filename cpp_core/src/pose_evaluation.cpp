@@ -731,11 +731,6 @@ void PoseEvaluator::solve_jacobian_rows(const std::vector<int>& rows) {
   system_.backward_solve_rows(rhs_, stride_, 3 * (num_weights_ + 1), rows, team_);
 }
 
-void PoseEvaluator::evaluate_system(const double* weights, PoseEvaluation& out) {
-  assemble_system(weights);
-  solve_assembled_system(weights, out);
-}
-
 void PoseEvaluator::assemble_system(const double* weights) {
   stride_ = row_width(3 * (num_weights_ + 1));
   assemble(weights, true);

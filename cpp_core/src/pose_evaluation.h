@@ -69,17 +69,16 @@ class PoseEvaluator {
   // Evaluates at weights (K). with_jacobian = false computes only weights, vertices and energy.
   void evaluate(const double* weights, bool with_jacobian, PoseEvaluation& out);
 
-  // Only the Gauss-Newton system at weights (K): fills out.weights, out.schur and out.step_rhs
-  // (no pose, energy or backward solve; out.evaluation = 0, so add_second_order refuses it).
-  void evaluate_system(const double* weights, PoseEvaluation& out);
-  // evaluate_system in two halves: the assembly at weights (K), which reads the system's rows,
-  // coupling and partition but not its factor (so it may run while the system is factored), then,
-  // once it is factored, the rest with the same weights.
+  // Only the Gauss-Newton system at weights (K), in two halves: the assembly, which reads the
+  // system's rows, coupling and partition but not its factor (so it may run while the system is
+  // factored), then, once it is factored, the rest with the same weights, filling out.weights,
+  // out.schur and out.step_rhs (no pose, energy or backward solve; out.evaluation = 0, so
+  // add_second_order refuses it).
   void assemble_system(const double* weights);
   void solve_assembled_system(const double* weights, PoseEvaluation& out);
   // The threads of the passes from now on (a thread_count; the same bits for any team).
   void set_team(int team) { team_ = team; }
-  // After evaluate_system: finishes the solve of the Jacobian's columns on the system rows `rows`
+  // After solve_assembled_system: finishes the solve of the Jacobian's columns on the system rows `rows`
   // (factor order) only, along their elimination-tree paths.
   void solve_jacobian_rows(const std::vector<int>& rows);
   // Then, for those rows u: K values of Z = K'^{-1} G'^T J for coordinate c.

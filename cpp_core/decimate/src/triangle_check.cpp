@@ -47,8 +47,6 @@ class VertexFans {
 
   // How many triangles have corner v.
   int count(int v) const { return first_[v + 1] - first_[v]; }
-  // One triangle with corner v (count(v) > 0).
-  int some_triangle(int v) const { return corner_[first_[v]] / 3; }
 
   // Whether v's triangles form one fan (joined edge to edge), given that no directed edge from or
   // to v is used twice. Around v each triangle (v, a, b) is a link edge a -> b; each link vertex
@@ -101,15 +99,6 @@ void check_triangles(const MeshView& rest) {
                      std::to_string(e.from) + " to " + std::to_string(e.to) +
                      ": the mesh is not consistently oriented or not manifold there");
   });
-}
-
-void check_vertex_fans(const MeshView& rest) {
-  VertexFans fans(rest);
-  for (int v = 0; v < rest.num_vertices; ++v)
-    if (!fans.one_fan(v))
-      throw InputError("vertex " + std::to_string(v) + " joins " + std::to_string(fans.count(v)) +
-                       " triangles that form more than one fan (e.g. " + describe(fans.some_triangle(v)) +
-                       "): the mesh is not manifold there");
 }
 
 std::vector<char> irregular_vertices(const MeshView& rest) {

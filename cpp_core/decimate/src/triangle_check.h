@@ -17,10 +17,6 @@ void check_corners(const MeshView& rest);
 // than two triangles).
 void check_triangles(const MeshView& rest);
 
-// Takes the rest mesh (after check_triangles); throws unless the triangles around every vertex form
-// one fan (joined edge to edge), i.e. the mesh is manifold at its vertices.
-void check_vertex_fans(const MeshView& rest);
-
 // Takes the rest mesh (after check_corners); returns #V flags, 1 where the mesh is not an oriented
 // manifold: both ends of a directed edge that more than one triangle runs along (an edge of three
 // or more triangles, or two triangles of opposite orientation), and a vertex whose triangles form

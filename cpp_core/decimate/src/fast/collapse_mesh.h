@@ -11,7 +11,8 @@ namespace decimation {
 
 class CollapseMesh {
  public:
-  // triangles: #F by 3 row-major vertex ids (checked by check_triangles and check_vertex_fans).
+  // triangles: #F by 3 row-major vertex ids (checked by check_corners; where the mesh is not an
+  // oriented manifold the decimator locks the vertices: irregular_vertices).
   CollapseMesh(const int* triangles, int num_triangles, int num_vertices);
 
   // The corners of triangle t (current vertex ids, the original orientation).
