@@ -168,11 +168,9 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap("topology and frames");
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
-  // Only the in-plane gradients are read after this: the plane bases live on in the features,
-  // the inverse frames nowhere (120 bytes per triangle).
-  impl.frames.plane_basis = PageArray<double>();  // move-assigned: the memory is freed
-  impl.frames.frame_inverse = PageArray<double>();
-  adjacency = TriangleAdjacency();  // nor the adjacency
+  // Only the frames' in-plane gradients are read after this (the plane bases live on in the
+  // features, the inverse frames nowhere), nor the adjacency.
+  adjacency = TriangleAdjacency();
   clock.lap("features");
   rows.get();  // the components and the system's rows and pattern
   compute_centroids(impl, example_pointers);

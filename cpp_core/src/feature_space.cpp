@@ -6,6 +6,7 @@
 
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "huge_pages.h"
 #include "lane_math.h"
@@ -20,12 +21,6 @@ namespace meshik {
 static_assert(kPolarLanes == kLanes && kGradientLanes == kLanes, "one polar batch per feature batch");
 
 namespace {
-
-// Writes the 3 by 2 row-major matrix m into rows [first_row, first_row + 6) of a lane-minor block.
-void store_rows(const Eigen::Matrix<double, 3, 2>& m, double* block, int first_row, int lane) {
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 2; ++c) block[(first_row + 2 * r + c) * kLanes + lane] = m(r, c);
-}
 
 // (M - I) U for a batch: m, 9 rows of kLanes (M row-major), basis U, 6 rows of kLanes (3 by 2
 // row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes),
@@ -131,7 +126,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
 
 }  // namespace
 
-ExampleFeatures compute_example_features(const TriangleFrames& frames,
+ExampleFeatures compute_example_features(TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress,
@@ -150,15 +145,13 @@ ExampleFeatures compute_example_features(const TriangleFrames& frames,
     assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0), team);
     assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0), team);
   });
-  assign_on_huge_pages(features.plane_basis, 6 * slots, 0.0, team);
-  for (int j = 0; j < m; ++j)
-    store_rows(plane_basis_of(frames, j), features.plane_basis.data() + 6 * kLanes * (j / kLanes), 0,
-               j % kLanes);
+  features.plane_basis = std::move(frames.plane_basis);  // the same layout (kGradientLanes == kLanes)
 
   if (precision == FeaturePrecision::kSingle)
     fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
   else
     fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
+  frames.frame_inverse = PageArray<double>();  // move-assigned: the memory is freed
   return features;
 }
 

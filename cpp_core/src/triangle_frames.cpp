@@ -36,8 +36,8 @@ MESHIK_LANE_INLINE void edge_lanes(const double* vertices, const int* triangles,
   }
 }
 
-// The frames of the count (1 <= count <= kGradientLanes) triangles first, first + 1, ..., all
-// lanes at once, written to their rows of frames' arrays.
+// The frames of the count (1 <= count <= kGradientLanes) triangles first, first + 1, ... (first:
+// a multiple of kGradientLanes), all lanes at once, written to their rows of frames' arrays.
 MESHIK_SIMD_CLONES
 void frames_of_batch(const double* rest, const int* triangles, int first, int count, TriangleFrames& frames) {
   constexpr int N = kGradientLanes;
@@ -86,7 +86,7 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
   for (int l = 0; l < count; ++l) {
     const size_t j = static_cast<size_t>(first + l);
     for (int e = 0; e < 9; ++e) frames.frame_inverse[9 * j + e] = inverse[e][l];
-    for (int e = 0; e < 6; ++e) frames.plane_basis[6 * j + e] = basis[e][l];
+    for (int e = 0; e < 6; ++e) frames.plane_basis[6 * static_cast<size_t>(first) + e * N + l] = basis[e][l];
     for (int e = 0; e < kGradientEntries; ++e) frames.gradient[kGradientEntries * j + e] = gradient[e][l];
   }
 }
@@ -97,9 +97,9 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
   TriangleFrames frames;
   frames.num_triangles = num_triangles;
   assign_on_huge_pages(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0, team);
-  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(num_triangles), 0.0, team);
-  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;
+  assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(batches) * kGradientLanes, 0.0, team);
+  assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
 #pragma omp parallel for num_threads(team) schedule(static)
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kGradientLanes;

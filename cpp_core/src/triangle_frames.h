@@ -39,9 +39,13 @@ struct TriangleFrames {
   // #F by kGradientEntries: the in-plane gradient coefficients, g_q of each corner read with
   // corner_gradients (half the memory of all six: 26 MB at 1.08M triangles).
   PageArray<double> gradient;
-  // #F by 3 by 2 row-major: U, whose columns are an orthonormal basis of the rest plane.
+  // U (3 by 2 row-major), whose columns are an orthonormal basis of the rest plane, in batches of
+  // kGradientLanes triangles: batch b holds 6 rows of kGradientLanes, entry (b 6 + row)
+  // kGradientLanes + lane for triangle j = b kGradientLanes + lane, zero in the last batch's
+  // padding lanes (ExampleFeatures::plane_basis's layout: the features take it over).
   PageArray<double> plane_basis;
-  // #F by 3 by 3 row-major: V^{-1}, the inverse rest frame (fourth vertex included).
+  // #F by 3 by 3 row-major: V^{-1}, the inverse rest frame (fourth vertex included); freed by
+  // compute_example_features.
   PageArray<double> frame_inverse;
 };
 
@@ -66,11 +70,13 @@ constexpr int kGradientLanes = 8;
 void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
                            int count, double (&t)[9][kGradientLanes]);
 
-// Eigen views of one triangle's blocks.
-inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>> plane_basis_of(
-    const TriangleFrames& frames, int j) {
-  return Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>>(
-      frames.plane_basis.data() + 6 * static_cast<size_t>(j));
+// An Eigen view of triangle j's plane basis U (3 by 2) in frames.
+inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>, Eigen::Unaligned,
+                  Eigen::InnerStride<kGradientLanes>>
+plane_basis_of(const TriangleFrames& frames, int j) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>, Eigen::Unaligned,
+                    Eigen::InnerStride<kGradientLanes>>(
+      frames.plane_basis.data() + 6 * kGradientLanes * static_cast<size_t>(j / kGradientLanes) + j % kGradientLanes);
 }
 
 }  // namespace meshik

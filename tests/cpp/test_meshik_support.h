@@ -176,7 +176,7 @@ inline void use_principal_logs(meshik::ExampleSet& set, const std::vector<const 
   const meshik::TriangleAdjacency adjacency =
       meshik::triangle_adjacency(impl.triangles.data(), impl.num_triangles, impl.num_vertices);
   // The set keeps only its frames' gradients: the features need the whole frames again.
-  const meshik::TriangleFrames frames =
+  meshik::TriangleFrames frames =
       meshik::compute_triangle_frames(impl.rest.data(), impl.triangles.data(), impl.num_triangles);
   impl.features = meshik::compute_example_features(frames, adjacency, impl.triangles.data(), pointers, {}, false);
 }
