@@ -72,9 +72,12 @@ double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The median of v (the mean of the two middle values for an even count), 0 when empty.
 double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
+  const size_t middle = v.size() / 2;
+  return v.size() % 2 == 1 ? v[middle] : 0.5 * (v[middle - 1] + v[middle]);
 }
 
 // An example set's view and example pointers (the set must outlive them).
@@ -260,7 +263,7 @@ std::string floor_line(const char* what, double ours_ms, const meshik_bench::Lib
 
 int main(int argc, char** argv) {
   std::string data = "../shared/data", list;
-  int rounds = 7, big_rounds = 2;
+  int rounds = 7, big_rounds = 3;
   bool big = true;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
