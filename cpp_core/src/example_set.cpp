@@ -168,8 +168,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap("topology and frames");
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
-  // Only the frames' in-plane gradients are read after this (the plane bases live on in the
-  // features, the inverse frames nowhere), nor the adjacency.
+  // The features took the frames' plane bases and freed their inverse frames: only the in-plane
+  // gradients are read after this, and the adjacency nowhere.
   adjacency = TriangleAdjacency();
   clock.lap("features");
   rows.get();  // the components and the system's rows and pattern

@@ -30,7 +30,7 @@ struct ExampleSet::Impl {
   std::vector<double> rest;    // #V by 3, internal order
   std::vector<int> triangles;  // #F by 3 internal vertex indices, internal triangle order
   VertexComponents components;
-  TriangleFrames frames;  // the in-plane gradients only (plane bases and inverse frames released)
+  TriangleFrames frames;  // the in-plane gradients only (the features took the rest)
   ExampleFeatures features;
   // Every handle set's pose system (pose_system.h) has a row for each vertex used by triangles
   // and the pattern of the lower triangle of K (gradient_operator.h) there; built and analysed
