@@ -63,8 +63,7 @@ size_t bytes_of(const std::vector<T, Allocator>& v) {
 void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& per_example) {
   const meshik::ExampleFeatures& f = s.features;
   const meshik::CscMatrix& pattern = s.system_analysis.analyzed_pattern();
-  per_example = static_cast<double>(bytes_of(f.single.nonlinear) + bytes_of(f.single.linear) +
-                                    bytes_of(f.full.nonlinear) + bytes_of(f.full.linear));
+  per_example = static_cast<double>(bytes_of(f.single.nonlinear) + bytes_of(f.full.nonlinear));
   all = per_example + static_cast<double>(
       bytes_of(f.plane_basis) + bytes_of(s.vertex_of_internal) + bytes_of(s.internal_of_vertex) +
       bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +

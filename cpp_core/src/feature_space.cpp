@@ -91,7 +91,6 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           const size_t block = static_cast<size_t>(batch) * k + i;
           const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
           minus_identity_on_plane(stretch, basis, values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
-          minus_identity_on_plane(t, basis, values.linear.data() + 6 * kLanes * block);
           for (int r = 0; r < 3; ++r)
             for (int l = 0; l < count; ++l)
               values.nonlinear[9 * kLanes * block + r * kLanes + l] = static_cast<Stored>(log[r][l]);
@@ -143,7 +142,6 @@ ExampleFeatures compute_example_features(TriangleFrames& frames,
   visit_feature_values(features, [&](auto& values) {
     using Stored = typename std::decay_t<decltype(values)>::Value;
     assign_on_huge_pages(values.nonlinear, 9 * slots * k, Stored(0), team);
-    assign_on_huge_pages(values.linear, 6 * slots * k, Stored(0), team);
   });
   features.plane_basis = std::move(frames.plane_basis);  // the same layout (kGradientLanes == kLanes)
 
@@ -399,6 +397,20 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
+// The linear feature L = exp(phi) (D + U) - U of one example for N triangles: feature, its 9 rows
+// (phi, then D); basis U, 6 rows. Writes 6 rows of N to out.
+template <typename Real, int N>
+MESHIK_LANE_INLINE void linear_feature(const Real* feature, const Real* basis, Real* out) {
+  const double unit = 1.0;  // phi = 1 phi_i: exact
+  BatchRotation<Real, N> r;
+  blend_rotation(feature, SharedWeights{&unit}, 1, r);
+  Real stretched[6 * N];
+  for (int e = 0; e < 6 * N; ++e) stretched[e] = feature[3 * N + e] + basis[e];
+  const Real zero[3][N] = {};
+  cross_plus_rotated(r, zero, stretched, stretched, out);
+  for (int e = 0; e < 6 * N; ++e) out[e] -= basis[e];
+}
+
 // blend_batch on the features' values stored as Stored (values: those of features), weights w
 // (SharedWeights or LaneWeights).
 template <typename Stored, typename Weights>
@@ -406,18 +418,6 @@ MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const Feat
                                      FeatureSpace space, Blend blend, const Weights& w, int batch, double* out) {
   const int k = features.num_examples;
   const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
-  if (space == FeatureSpace::kLinear) {
-    // F = s U + sum_i w_i L_i with s = 1 (affine) or sum_i w_i (free: sum_i w_i T_i U).
-    const Stored* lin = values.linear.data() + static_cast<size_t>(batch) * k * 6 * L;
-    scaled_basis<double, L>(w, k, blend, basis, out);
-    for (int i = 0; i < k; ++i)
-      for (int e = 0; e < 6 * L; ++e) {
-        const double value = static_cast<double>(lin[i * 6 * L + e]);
-        out[e] += w.template at<double>(i, e % L) * value;
-        out[(i + 1) * 6 * L + e] = blend == Blend::kFree ? value + basis[e] : value;
-      }
-    return;
-  }
   const Stored* feature = values.nonlinear.data() + static_cast<size_t>(batch) * k * 9 * L;
   if (batch + kPrefetchDistance < features.num_batches) {
     prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
@@ -432,6 +432,19 @@ MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const Feat
     double* room = out + 6 * (k + 1) * L;
     for (int e = 0; e < k * 9 * L; ++e) room[e] = static_cast<double>(feature[e]);
     wide = room;
+  }
+  if (space == FeatureSpace::kLinear) {
+    // F = s U + sum_i w_i L_i with s = 1 (affine) or sum_i w_i (free: sum_i w_i T_i U).
+    scaled_basis<double, L>(w, k, blend, basis, out);
+    for (int i = 0; i < k; ++i) {
+      double linear[6 * L];
+      linear_feature<double, L>(wide + i * 9 * L, basis, linear);
+      for (int e = 0; e < 6 * L; ++e) {
+        out[e] += w.template at<double>(i, e % L) * linear[e];
+        out[(i + 1) * 6 * L + e] = blend == Blend::kFree ? linear[e] + basis[e] : linear[e];
+      }
+    }
+    return;
   }
   BatchRotation<double, L> r;
   blend_nonlinear(wide, basis, w, k, blend, out, r);
@@ -464,6 +477,15 @@ MESHIK_LANE_INLINE void float_feature_pair(const ExampleFeatures& features, cons
 }
 
 }  // namespace
+
+void linear_features_of_batch(const ExampleFeatures& features, int batch, int example, double* out) {
+  const size_t first = (static_cast<size_t>(batch) * features.num_examples + example) * 9 * L;
+  double wide[9 * L];
+  visit_feature_values(features, [&](const auto& values) {
+    for (int e = 0; e < 9 * L; ++e) wide[e] = static_cast<double>(values.nonlinear[first + e]);
+  });
+  linear_feature<double, L>(wide, features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L, out);
+}
 
 MESHIK_SIMD_CLONES
 void blend_batch(const ExampleFeatures& features, FeatureSpace space, const double* w, int batch,

@@ -6,7 +6,9 @@
 //              F_j(w) = exp(sum_i w_i phi_ij) (U_j + sum_i w_i D_ij)
 //   linear:    L_ij = (T_ij - I) U_j,     F_j(w) = U_j + sum_i w_i L_ij
 // with T_ij = R_ij S_ij the proper polar decomposition. w = 0 gives U_j (the rest pose) and
-// w = e_i gives T_ij U_j (example i).
+// w = e_i gives T_ij U_j (example i). Only the nonlinear features are stored: the linear ones are
+// derived from them where read, L_ij = exp(phi_ij) (D_ij + U_j) - U_j (T_ij U_j = R_ij S_ij U_j),
+// which keeps 6 of every 15 values per triangle and example out of memory.
 //
 // Triangles are processed in batches of kLanes, stored lane-minor (structure of arrays per batch)
 // so that one batch's arithmetic is SIMD; the last batch is padded with zero features.
@@ -36,8 +38,6 @@ struct FeatureValues {
   // Batch b, example i: 9 rows of kLanes values, phi_ij (3) then D_ij (3 by 2 row-major):
   // entry ((b #E + i) 9 + row) kLanes + lane for triangle j = b kLanes + lane.
   PageArray<Stored> nonlinear;
-  // Batch b, example i: 6 rows of kLanes, L_ij (3 by 2 row-major): ((b #E + i) 6 + row) kLanes + lane.
-  PageArray<Stored> linear;
 };
 
 // Mixed precision, by the rule of issue 13: "Mixed precision is allowed wherever the pose, energy
@@ -104,6 +104,11 @@ void blend_batch(const ExampleFeatures& features, FeatureSpace space, const doub
 // weight for the triangle in lane l at lane_weights[i kLanes + l].
 void blend_batch_lanes(const ExampleFeatures& features, FeatureSpace space, Blend blend, const double* lane_weights,
                        int batch, double* out);
+
+// The linear space's features of example `example` for the triangles of `batch`:
+// L_ij = exp(phi_ij) (D_ij + U_j) - U_j, 6 rows of kLanes doubles (3 by 2 row-major) to out, zero
+// in padding lanes. The same values blend_batch blends in the linear space.
+void linear_features_of_batch(const ExampleFeatures& features, int batch, int example, double* out);
 
 // Floats of scratch add_residual_curvature needs.
 inline int curvature_scratch_size(int num_examples) {

@@ -53,23 +53,21 @@ LinearStart::LinearStart(const ExampleSet::Impl& set, const PoseSystem& system, 
         for (int i = 0; i < k; ++i) affine_(3 * h + c, i) -= system.coupling_value()[s] * z[i];
       }
   // + L^T (handles' part of Q): handle h at corner q of triangle j adds x_h . (L_ij g_q).
-  // The features' stored values (float or double) are widened before they are multiplied.
-  visit_feature_values(set.features, [&](const auto& values) {
-    for (int j : system.handle_triangles()) {
-      double g[6];
-      corner_gradients(set.frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
+  for (int j : system.handle_triangles()) {
+    double g[6];
+    corner_gradients(set.frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
+    for (int i = 0; i < k; ++i) {
+      double linear[6 * kLanes];
+      linear_features_of_batch(set.features, j / kLanes, i, linear);
+      const double* l = linear + j % kLanes;
       for (int q = 0; q < 3; ++q) {
         const int h = system.handle_of_vertex()[set.triangles[3 * j + q]];
         if (h < 0) continue;
-        for (int i = 0; i < k; ++i) {
-          const auto* l = values.linear.data() + (static_cast<size_t>(j / kLanes) * k + i) * 6 * kLanes + j % kLanes;
-          for (int c = 0; c < 3; ++c)
-            affine_(3 * h + c, i) += static_cast<double>(l[(2 * c) * kLanes]) * g[2 * q] +
-                                     static_cast<double>(l[(2 * c + 1) * kLanes]) * g[2 * q + 1];
-        }
+        for (int c = 0; c < 3; ++c)
+          affine_(3 * h + c, i) += l[(2 * c) * kLanes] * g[2 * q] + l[(2 * c + 1) * kLanes] * g[2 * q + 1];
       }
     }
-  });
+  }
 }
 
 Eigen::VectorXd LinearStart::weights(const double* targets, double regularization) const {

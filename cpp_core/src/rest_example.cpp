@@ -27,7 +27,6 @@ template <typename Stored>
 FeatureValues<Stored> prepend_zero_example(const FeatureValues<Stored>& values, int batches, int examples) {
   FeatureValues<Stored> out;
   out.nonlinear = prepend_zero_example(values.nonlinear, batches, examples, 9);
-  out.linear = prepend_zero_example(values.linear, batches, examples, 6);
   return out;
 }
 
