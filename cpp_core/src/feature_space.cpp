@@ -203,6 +203,22 @@ MESHIK_LANE_INLINE void scaled_basis(const Weights& w, int k, Blend blend, const
   for (int e = 0; e < 6 * N; ++e) start[e] = sum[e % N] * basis[e];
 }
 
+// R = I + a [phi]_x + b [phi]_x^2 (row-major) for one lane's phi = (x, y, z) and its Rodrigues
+// coefficients a, b (rodrigues_lanes).
+template <typename Real>
+MESHIK_LANE_INLINE void rodrigues_rotation(Real x, Real y, Real z, Real a, Real b, Real (&rot)[9]) {
+  const Real one = 1;
+  rot[0] = one - b * (y * y + z * z);
+  rot[1] = b * x * y - a * z;
+  rot[2] = b * x * z + a * y;
+  rot[3] = b * x * y + a * z;
+  rot[4] = one - b * (x * x + z * z);
+  rot[5] = b * y * z - a * x;
+  rot[6] = b * x * z - a * y;
+  rot[7] = b * y * z + a * x;
+  rot[8] = one - b * (x * x + y * y);
+}
+
 // Fills r for the triangles whose features (#E blocks of 9 rows) start at feature; weights w
 // (SharedWeights or LaneWeights over #E examples).
 template <typename Real, int N, typename Weights>
@@ -216,19 +232,10 @@ MESHIK_LANE_INLINE void blend_rotation(const Real* feature, const Weights& w, in
   for (int l = 0; l < N; ++l)
     r.theta_squared[l] = r.phi[0][l] * r.phi[0][l] + r.phi[1][l] * r.phi[1][l] + r.phi[2][l] * r.phi[2][l];
   rodrigues_lanes<N>(r.theta_squared, r.a, r.b, r.c);
-  // R = I + a [phi]_x + b [phi]_x^2.
-  const Real one = 1;
   for (int l = 0; l < N; ++l) {
-    const Real x = r.phi[0][l], y = r.phi[1][l], z = r.phi[2][l], a = r.a[l], b = r.b[l];
-    r.rot[0][l] = one - b * (y * y + z * z);
-    r.rot[1][l] = b * x * y - a * z;
-    r.rot[2][l] = b * x * z + a * y;
-    r.rot[3][l] = b * x * y + a * z;
-    r.rot[4][l] = one - b * (x * x + z * z);
-    r.rot[5][l] = b * y * z - a * x;
-    r.rot[6][l] = b * x * z - a * y;
-    r.rot[7][l] = b * y * z + a * x;
-    r.rot[8][l] = one - b * (x * x + y * y);
+    Real rot[9];
+    rodrigues_rotation(r.phi[0][l], r.phi[1][l], r.phi[2][l], r.a[l], r.b[l], rot);
+    for (int e = 0; e < 9; ++e) r.rot[e][l] = rot[e];
   }
 }
 
@@ -397,18 +404,27 @@ MESHIK_LANE_INLINE void add_curvature(const Real* feature, int k, const BatchRot
   }
 }
 
-// The linear feature L = exp(phi) (D + U) - U of one example for N triangles: feature, its 9 rows
-// (phi, then D); basis U, 6 rows. Writes 6 rows of N to out.
-template <typename Real, int N>
-MESHIK_LANE_INLINE void linear_feature(const Real* feature, const Real* basis, Real* out) {
-  const double unit = 1.0;  // phi = 1 phi_i: exact
-  BatchRotation<Real, N> r;
-  blend_rotation(feature, SharedWeights{&unit}, 1, r);
-  Real stretched[6 * N];
-  for (int e = 0; e < 6 * N; ++e) stretched[e] = feature[3 * N + e] + basis[e];
-  const Real zero[3][N] = {};
-  cross_plus_rotated(r, zero, stretched, stretched, out);
-  for (int e = 0; e < 6 * N; ++e) out[e] -= basis[e];
+// The linear feature L = exp(phi) (D + U) - U of one example for the kLanes triangles of a batch:
+// feature, its 9 rows (phi, then D) as stored (float or double, widened here); basis U, 6 rows.
+// Writes 6 rows of kLanes to out.
+template <typename Stored>
+MESHIK_LANE_INLINE void linear_feature(const Stored* feature, const double* basis, double* out) {
+  double phi[3][L], theta_squared[L], a[L], b[L], c[L];
+  for (int d = 0; d < 3; ++d)
+    for (int l = 0; l < L; ++l) phi[d][l] = static_cast<double>(feature[d * L + l]);
+  for (int l = 0; l < L; ++l)
+    theta_squared[l] = phi[0][l] * phi[0][l] + phi[1][l] * phi[1][l] + phi[2][l] * phi[2][l];
+  rodrigues_lanes<L>(theta_squared, a, b, c);
+  for (int l = 0; l < L; ++l) {
+    double rot[9];
+    rodrigues_rotation(phi[0][l], phi[1][l], phi[2][l], a[l], b[l], rot);
+    double p[6];  // D + U
+    for (int e = 0; e < 6; ++e) p[e] = static_cast<double>(feature[(3 + e) * L + l]) + basis[e * L + l];
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 2; ++col)
+        out[(2 * row + col) * L + l] = rot[3 * row] * p[col] + rot[3 * row + 1] * p[2 + col] +
+                                       rot[3 * row + 2] * p[4 + col] - basis[(2 * row + col) * L + l];
+  }
 }
 
 // blend_batch on the features' values stored as Stored (values: those of features), weights w
@@ -423,6 +439,19 @@ MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const Feat
     prefetch_values(feature + kPrefetchDistance * k * 9 * L, static_cast<size_t>(k) * 9 * L);
     prefetch_values(basis + kPrefetchDistance * 6 * L, 6 * L);
   }
+  if (space == FeatureSpace::kLinear) {
+    // F = s U + sum_i w_i L_i with s = 1 (affine) or sum_i w_i (free: sum_i w_i T_i U).
+    scaled_basis<double, L>(w, k, blend, basis, out);
+    for (int i = 0; i < k; ++i) {
+      double* linear = out + (i + 1) * 6 * L;
+      linear_feature(feature + i * 9 * L, basis, linear);
+      for (int e = 0; e < 6 * L; ++e) {
+        out[e] += w.template at<double>(i, e % L) * linear[e];
+        if (blend == Blend::kFree) linear[e] += basis[e];
+      }
+    }
+    return;
+  }
   // Floats are widened into out's room after the blend first, in one pass: the blend's loops
   // then read doubles only (reading the floats inside them made the elephant's blend 45 % slower).
   const double* wide = nullptr;
@@ -432,19 +461,6 @@ MESHIK_LANE_INLINE void blend_stored(const ExampleFeatures& features, const Feat
     double* room = out + 6 * (k + 1) * L;
     for (int e = 0; e < k * 9 * L; ++e) room[e] = static_cast<double>(feature[e]);
     wide = room;
-  }
-  if (space == FeatureSpace::kLinear) {
-    // F = s U + sum_i w_i L_i with s = 1 (affine) or sum_i w_i (free: sum_i w_i T_i U).
-    scaled_basis<double, L>(w, k, blend, basis, out);
-    for (int i = 0; i < k; ++i) {
-      double linear[6 * L];
-      linear_feature<double, L>(wide + i * 9 * L, basis, linear);
-      for (int e = 0; e < 6 * L; ++e) {
-        out[e] += w.template at<double>(i, e % L) * linear[e];
-        out[(i + 1) * 6 * L + e] = blend == Blend::kFree ? linear[e] + basis[e] : linear[e];
-      }
-    }
-    return;
   }
   BatchRotation<double, L> r;
   blend_nonlinear(wide, basis, w, k, blend, out, r);
@@ -480,11 +496,8 @@ MESHIK_LANE_INLINE void float_feature_pair(const ExampleFeatures& features, cons
 
 void linear_features_of_batch(const ExampleFeatures& features, int batch, int example, double* out) {
   const size_t first = (static_cast<size_t>(batch) * features.num_examples + example) * 9 * L;
-  double wide[9 * L];
-  visit_feature_values(features, [&](const auto& values) {
-    for (int e = 0; e < 9 * L; ++e) wide[e] = static_cast<double>(values.nonlinear[first + e]);
-  });
-  linear_feature<double, L>(wide, features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L, out);
+  const double* basis = features.plane_basis.data() + static_cast<size_t>(batch) * 6 * L;
+  visit_feature_values(features, [&](const auto& values) { linear_feature(values.nonlinear.data() + first, basis, out); });
 }
 
 MESHIK_SIMD_CLONES
