@@ -76,9 +76,11 @@ constexpr Real kRodriguesSeriesBelow = sizeof(Real) < sizeof(double) ? Real(1) :
 template <int kLanes, typename Real = double>
 inline void rodrigues_lanes(const Real* theta_squared, Real* a, Real* b, Real* c) {
   constexpr Real kSeriesBelow = kRodriguesSeriesBelow<Real>, kHalf = Real(0.5), kOne = 1, kTwo = 2, kSixth = Real(1.0 / 6.0);
+  // theta is used by the closed forms alone, which the series replace below kSeriesBelow: there
+  // it may be 0 and the closed forms infinite or NaN, never selected. Unclamped, the square root
+  // stays one vector instruction (a clamp let the compiler branch around it, lane by lane).
   Real theta[kLanes], half_sin[kLanes], half_cos[kLanes];
-  for (int l = 0; l < kLanes; ++l)
-    theta[l] = lane_sqrt(theta_squared[l] < kSeriesBelow ? kSeriesBelow : theta_squared[l]);
+  for (int l = 0; l < kLanes; ++l) theta[l] = lane_sqrt(theta_squared[l]);
   Real half[kLanes];
   for (int l = 0; l < kLanes; ++l) half[l] = kHalf * theta[l];
   sin_cos_lanes<kLanes>(half, half_sin, half_cos);
