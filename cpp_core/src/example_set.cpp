@@ -187,7 +187,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     analyze();
   if (!cached) cache_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
   // The temporaries above (the examples' copies, the adjacency, the frames' released parts, the
-  // analysis thread's work arrays) leave holes in the heaps: give them back before the Solver.
+  // analysis thread's work arrays) leave holes in the heaps: many are given back before the
+  // Solver, a few kept for its allocations (heap_release.h).
   release_free_heap_memory();
   clock.lap(cached ? "analysis (cached)" : "analysis");  // with more than one thread: the wait for it
 }

@@ -105,8 +105,8 @@ PoseSystem::PoseSystem(const ExampleSet::Impl& set, const std::vector<int>& hand
                      e.what());
   }
   if (beside.valid()) beside.get();
-  // The factorization's work arrays (the values' copies, the update stacks) are freed: their
-  // pages go back before the poses' own buffers are allocated.
+  // The factorization's work arrays (the values' copies, the update stacks) are freed: when large,
+  // their pages go back before the poses' own buffers are allocated (heap_release.h).
   release_free_heap_memory();
   if (progress && !progress(1.0, "factorizing")) throw Cancelled("cancelled after factorizing");
 }
