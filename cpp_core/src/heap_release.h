@@ -24,8 +24,10 @@ constexpr size_t kKeptFreeHeapBytes = size_t{64} << 20;
 
 // When the malloc heaps hold more than kKeptFreeHeapBytes of free memory, returns their free pages
 // to the system (glibc's malloc_trim(0): whole free pages inside a heap are released too, not only
-// its top); with less, keeps them. Takes nothing, returns nothing; a few milliseconds at 1M
-// triangles. Elsewhere than glibc it does nothing.
+// its top); with less, keeps them. The free memory counted includes chunks whose pages an earlier
+// trim already released, so a process holding many such holes trims every time, as before the bound.
+// Takes nothing, returns nothing; a few milliseconds at 1M triangles. Before glibc 2.33 (no
+// mallinfo2) it always trims; elsewhere than glibc it does nothing.
 inline void release_free_heap_memory() {
 #if defined(__GLIBC__)
 #if __GLIBC_PREREQ(2, 33)
