@@ -2,8 +2,8 @@
 // temporaries. glibc keeps freed chunks of its heaps resident while anything above them is still
 // in use (each thread has its own heap: the ExampleSet's analysis thread leaves one behind too).
 // At 1.08M triangles on 2 threads about 105 MB are free in the heaps after the ExampleSet and again
-// after the factorization; kept, they would stay resident under the pose's buffers (the process's
-// peak), so they are given back.
+// after the factorization; kept, they would stay resident under the factorization (the process's
+// peak) and under the poses, so they are given back.
 // Below a bound they are kept instead: the next allocations reuse those pages without the kernel's
 // faults and zeroing. On the elephant (40 MB free after the ExampleSet, 13 MB after the
 // factorization) giving them back made the Solver built next about 15-20 % slower. At 1.08M on one
