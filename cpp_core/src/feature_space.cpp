@@ -49,6 +49,9 @@ MESHIK_LANE_INLINE void float_pair(const Value* first, const Value* second, int 
 }
 static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 
+// Batches of triangles a thread takes at a time in the features' parallel loops (4,096 triangles).
+constexpr int kBatchesPerTask = 512;
+
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
 // gradients, for every example, on `team` threads, as Stored values (features' precision). Its
@@ -61,7 +64,9 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   const int k = features.num_examples;
   FeatureValues<Stored>& values = values_of<Stored>(features);
   // Examples go in groups of `team`: the features of each (all threads over its triangles), then
-  // the groups' branch choices side by side (one thread each: a spanning tree grows serially).
+  // the groups' branch choices side by side (one thread each: a spanning tree grows serially). A
+  // smaller group, when #E is not a multiple of the team, goes first: its branch choices leave
+  // threads idle, and early on the ExampleSet's analysis thread is there to take their cores.
   const int group_size = std::max(1, std::min(team, k));
   PageArray<Eigen::Matrix3d> rotations;
   assign_on_huge_pages(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()), team);
@@ -74,15 +79,18 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
     assign_on_huge_pages(distances[g], adjacency.neighbour.size(), 0.0, team);
   }
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
-  for (int group = 0; group < k; group += group_size) {
-    const int members = std::min(group_size, k - group);
+  for (int group = 0, members = k % group_size == 0 ? group_size : k % group_size; group < k;
+       group += members, members = group_size) {
     for (int g = 0; g < members; ++g) {
       const int i = group + g;
       // Triangles are independent: each batch of kLanes triangles is one task (one thread writes
-      // every lane of a block), so the features are the same bits for any number of threads.
+      // every lane of a block), so the features are the same bits for any number of threads. The
+      // batches are handed out in chunks as threads come free: the ExampleSet's analysis thread
+      // shares the cores, and equal static shares would leave a core idle while the thread that
+      // shares its core with it finishes.
 #pragma omp parallel num_threads(team)
       {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, kBatchesPerTask)
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
           double t[9][kLanes], rotation[9][kLanes], stretch[9][kLanes], log[3][kLanes];
@@ -100,7 +108,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           }
         }
         if (consistent_branches) {
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, kBatchesPerTask)
           for (int batch = 0; batch < features.num_batches; ++batch)
             rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
                                     distances[g].data());

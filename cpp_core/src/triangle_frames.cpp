@@ -100,7 +100,9 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;
   assign_on_huge_pages(frames.plane_basis, 6 * static_cast<size_t>(batches) * kGradientLanes, 0.0, team);
   assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
-#pragma omp parallel for num_threads(team) schedule(static)
+  // Chunks of batches handed out as threads come free (the ExampleSet's analysis thread shares the
+  // cores); each batch's values are the same whichever thread computes them.
+#pragma omp parallel for num_threads(team) schedule(dynamic, 512)
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kGradientLanes;
     frames_of_batch(rest, triangles, first, std::min(kGradientLanes, num_triangles - first), frames);
