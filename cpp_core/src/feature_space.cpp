@@ -49,8 +49,6 @@ MESHIK_LANE_INLINE void float_pair(const Value* first, const Value* second, int 
 }
 static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 
-// Batches of triangles a thread takes at a time in the features' parallel loops (4,096 triangles).
-constexpr int kBatchesPerTask = 512;
 
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
@@ -79,6 +77,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
     assign_on_huge_pages(distances[g], adjacency.neighbour.size(), 0.0, team);
   }
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
+  const int batches_per_task = dynamic_chunk(features.num_batches, team);
   for (int group = 0, members = k % group_size == 0 ? group_size : k % group_size; group < k;
        group += members, members = group_size) {
     for (int g = 0; g < members; ++g) {
@@ -90,7 +89,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       // shares its core with it finishes.
 #pragma omp parallel num_threads(team)
       {
-#pragma omp for schedule(dynamic, kBatchesPerTask)
+#pragma omp for schedule(dynamic, batches_per_task)
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
           double t[9][kLanes], rotation[9][kLanes], stretch[9][kLanes], log[3][kLanes];
@@ -108,7 +107,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
           }
         }
         if (consistent_branches) {
-#pragma omp for schedule(dynamic, kBatchesPerTask)
+#pragma omp for schedule(dynamic, batches_per_task)
           for (int batch = 0; batch < features.num_batches; ++batch)
             rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
                                     distances[g].data());

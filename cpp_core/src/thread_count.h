@@ -13,4 +13,12 @@ int thread_count(int requested);
 // or without OpenMP).
 int thread_index();
 
+// The chunk for a dynamically scheduled loop of `iterations` on `team` threads: about 8 chunks per
+// thread, so that a thread slowed by another task on its core leaves little for the others to wait
+// for, and from 16 to 512 iterations.
+inline int dynamic_chunk(int iterations, int team) {
+  const int chunk = iterations / (8 * (team > 0 ? team : 1));
+  return chunk < 16 ? 16 : (chunk > 512 ? 512 : chunk);
+}
+
 }  // namespace meshik

@@ -8,6 +8,7 @@
 
 #include "huge_pages.h"
 #include "simd_clones.h"
+#include "thread_count.h"
 
 namespace meshik {
 
@@ -102,7 +103,8 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
   assign_on_huge_pages(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
   // Chunks of batches handed out as threads come free (the ExampleSet's analysis thread shares the
   // cores); each batch's values are the same whichever thread computes them.
-#pragma omp parallel for num_threads(team) schedule(dynamic, 512)
+  const int batches_per_task = dynamic_chunk(batches, team);
+#pragma omp parallel for num_threads(team) schedule(dynamic, batches_per_task)
   for (int batch = 0; batch < batches; ++batch) {
     const int first = batch * kGradientLanes;
     frames_of_batch(rest, triangles, first, std::min(kGradientLanes, num_triangles - first), frames);
