@@ -214,15 +214,6 @@ void forward_supernode(const SymbolicFactor& f, const double* values, int s, int
   update_row_range<P>(block, k, r, std::max(begin, k), end, f.rows.data() + f.row_start[s], xs, x, stride);
 }
 
-// Forward pass (prefix, then supernodes) for one chunk.
-template <class P>
-void forward_chunk(const Analysis& analysis, const FactorValues& factor, double* x, long stride) {
-  prefix_forward<P>(analysis.prefix, factor, x, stride);
-  const SymbolicFactor& f = analysis.symbolic;
-  for (int s = 0; s < f.num_supernodes(); ++s)
-    forward_supernode<P>(f, factor.supernodal.data(), s, 0, f.row_start[s + 1] - f.row_start[s], x, stride);
-}
-
 // Backward pass over supernode s for one chunk: its rows of x from the rows below (done before).
 template <class P>
 void backward_supernode(const SymbolicFactor& f, const double* values, int s, double* x, long stride) {
@@ -303,10 +294,34 @@ void by_chunks(double* x, int columns, int column_team, Pass&& pass) {
   }
 }
 
-// The forward pass on `team` threads over the schedule's subtrees, chunk by chunk of columns: the
-// prefix, then in one parallel region each subtree's own rows on one thread (all the chunk's
-// columns) and the top pass with the chunk's vectors in groups, one thread per group. Every row of
-// x sees the same operations in the same order as in forward_chunk (a top row's updates in
+// Calls work(P(), first) for the chunks of at most kMaxVectors vectors that cover the vectors
+// [begin, end) of a row (one half vector when `half`), first: the chunk's first vector.
+template <class Work>
+void for_each_chunk(bool half, int begin, int end, Work&& work) {
+  for (int first = begin; first < end; first += kMaxVectors)
+    with_pack(half, std::min(kMaxVectors, end - first), [&](auto pack) { work(pack, first); });
+}
+
+// The forward pass (prefix, then supernodes) on one thread over the vectors [begin, end) of every
+// row: each supernode takes every chunk of them in turn, so that its block comes from memory once
+// and from the cache for the other chunks.
+void forward_vectors(const Analysis& analysis, const FactorValues& factor, double* x, long stride, bool half,
+                     int begin, int end) {
+  for_each_chunk(half, begin, end, [&](auto pack, int first) {
+    prefix_forward<decltype(pack)>(analysis.prefix, factor, x + first * kLanes, stride);
+  });
+  const SymbolicFactor& f = analysis.symbolic;
+  for (int s = 0; s < f.num_supernodes(); ++s)
+    for_each_chunk(half, begin, end, [&](auto pack, int first) {
+      forward_supernode<decltype(pack)>(f, factor.supernodal.data(), s, 0, f.row_start[s + 1] - f.row_start[s],
+                                        x + first * kLanes, stride);
+    });
+}
+
+// The forward pass on `team` threads over the schedule's subtrees: the prefix, then in one
+// parallel region each subtree's own rows on one thread (all columns, each supernode taking every
+// chunk in turn) and the top pass with the vectors in groups, one thread per group. Every row of x
+// sees the same operations in the same order as in forward_vectors (a top row's updates in
 // increasing supernode order, in the top pass), so the result is the same bits.
 void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const SubtreeSchedule& schedule, double* x,
                          int stride, int columns, int team) {
@@ -315,28 +330,27 @@ void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const Su
   const bool half = fits_half(columns);
   const int vectors = round_up_to_lanes(columns) / kLanes;
   const int subtrees = static_cast<int>(schedule.root.size());
-  for (int first = 0; first < vectors; first += kMaxVectors) {
-    const int chunk = std::min(kMaxVectors, vectors - first);
-    const int per_group = (chunk + team - 1) / team;
-    const int groups = (chunk + per_group - 1) / per_group;
-    double* xc = x + first * kLanes;
-    with_pack(half, chunk, [&](auto pack) { prefix_forward<decltype(pack)>(a.prefix, factor, xc, stride); });
+  const int per_group = (vectors + team - 1) / team;
+  const int groups = (vectors + per_group - 1) / per_group;
+  for_each_chunk(half, 0, vectors, [&](auto pack, int first) {
+    prefix_forward<decltype(pack)>(a.prefix, factor, x + first * kLanes, stride);
+  });
 #pragma omp parallel num_threads(team)
-    {
-      with_pack(half, chunk, [&](auto pack) {
+  {
 #pragma omp for schedule(dynamic, 1)
-        for (int t = 0; t < subtrees; ++t)
-          for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
-            forward_supernode<decltype(pack)>(f, values, s, 0, schedule.top_row[s], xc, stride);
-      });  // the loop's barrier: every subtree done before the top pass
-#pragma omp for schedule(static)
-      for (int g = 0; g < groups; ++g)
-        with_pack(half, std::min(per_group, chunk - g * per_group), [&](auto pack) {
-          for (int s : schedule.top_pass)
-            forward_supernode<decltype(pack)>(f, values, s, schedule.top_row[s], f.row_start[s + 1] - f.row_start[s],
-                                              xc + g * per_group * kLanes, stride);
+    for (int t = 0; t < subtrees; ++t)
+      for (int s = schedule.first[t]; s <= schedule.root[t]; ++s)
+        for_each_chunk(half, 0, vectors, [&](auto pack, int first) {
+          forward_supernode<decltype(pack)>(f, values, s, 0, schedule.top_row[s], x + first * kLanes, stride);
         });
-    }
+    // (the loop's barrier: every subtree done before the top pass)
+#pragma omp for schedule(static)
+    for (int g = 0; g < groups; ++g)
+      for (int s : schedule.top_pass)
+        for_each_chunk(half, g * per_group, std::min((g + 1) * per_group, vectors), [&](auto pack, int first) {
+          forward_supernode<decltype(pack)>(f, values, s, schedule.top_row[s], f.row_start[s + 1] - f.row_start[s],
+                                            x + first * kLanes, stride);
+        });
   }
 }
 
@@ -344,11 +358,23 @@ void forward_by_subtrees(const Analysis& a, const FactorValues& factor, const Su
 
 void forward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
                    int columns, int team, const SubtreeSchedule* schedule) {
+  if (columns <= 0) return;
   if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
     forward_by_subtrees(analysis, factor, *schedule, x, stride, columns, team);
     return;
   }
-  by_chunks(x, columns, team, [&](auto pack, double* xc) { forward_chunk<decltype(pack)>(analysis, factor, xc, stride); });
+  // Without a schedule: the vectors in groups, one thread per group.
+  const bool half = fits_half(columns);
+  const int vectors = round_up_to_lanes(columns) / kLanes;
+  const int per_group = (vectors + std::max(team, 1) - 1) / std::max(team, 1);
+  const int groups = (vectors + per_group - 1) / per_group;
+  if (team > 1 && groups > 1) {
+#pragma omp parallel for schedule(static) num_threads(std::min(team, groups))
+    for (int g = 0; g < groups; ++g)
+      forward_vectors(analysis, factor, x, stride, half, g * per_group, std::min((g + 1) * per_group, vectors));
+  } else {
+    forward_vectors(analysis, factor, x, stride, half, 0, vectors);
+  }
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
