@@ -371,8 +371,8 @@ TEST(SparseCholesky, InOrderSolvesGiveTheSameBitsOnAnyNumberOfThreads) {
   const CscMatrix a = grid_laplacian(31, 27, 0.1);
   SparseCholesky chol;
   chol.compute(a);
-  // Several chunks of SIMD vectors of columns: each goes over the tree's subtrees on the threads,
-  // and its vectors in groups over the top of the tree.
+  // Several chunks of SIMD vectors of columns: the subtrees on the threads, each of their
+  // supernodes taking every chunk in turn, then the vectors in groups over the top of the tree.
   const int nrhs = 40;
   const int stride = SparseCholesky::padded_width(nrhs);
   const std::vector<double> b = random_values(static_cast<size_t>(a.rows) * stride, 43);
