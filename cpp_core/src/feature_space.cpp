@@ -49,7 +49,6 @@ MESHIK_LANE_INLINE void float_pair(const Value* first, const Value* second, int 
 }
 static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 
-
 // Writes the per-example blocks of features (sized, plane basis set): the stretches and rotation
 // logs (consistent branches, or principal ones) of the nonlinear space and the linear space's
 // gradients, for every example, on `team` threads, as Stored values (features' precision). Its
