@@ -366,15 +366,15 @@ void forward_solve(const Analysis& analysis, const FactorValues& factor, double*
   // Without a schedule: the vectors in groups, one thread per group.
   const bool half = fits_half(columns);
   const int vectors = round_up_to_lanes(columns) / kLanes;
-  const int per_group = (vectors + std::max(team, 1) - 1) / std::max(team, 1);
-  const int groups = (vectors + per_group - 1) / per_group;
-  if (team > 1 && groups > 1) {
-#pragma omp parallel for schedule(static) num_threads(std::min(team, groups))
-    for (int g = 0; g < groups; ++g)
-      forward_vectors(analysis, factor, x, stride, half, g * per_group, std::min((g + 1) * per_group, vectors));
-  } else {
+  if (team <= 1 || vectors < 2) {
     forward_vectors(analysis, factor, x, stride, half, 0, vectors);
+    return;
   }
+  const int per_group = (vectors + team - 1) / team;
+  const int groups = (vectors + per_group - 1) / per_group;
+#pragma omp parallel for schedule(static) num_threads(groups)
+  for (int g = 0; g < groups; ++g)
+    forward_vectors(analysis, factor, x, stride, half, g * per_group, std::min((g + 1) * per_group, vectors));
 }
 
 void backward_solve(const Analysis& analysis, const FactorValues& factor, double* x, int stride,
