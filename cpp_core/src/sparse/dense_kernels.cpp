@@ -43,6 +43,7 @@ void product_double_tile(const double* a, int ld, int width, int q0, int p0, Out
   Vec upper[NC] = {}, lower[NC] = {};
   for (int t = 0; t < width; ++t) {
     const double* at = a + static_cast<long>(t) * ld;
+    prefetch_rows_ahead(at + p0);
     const Vec column_upper = load(at + p0), column_lower = load(at + p0 + kLanes);
     for (int c = 0; c < NC; ++c) {
       const Vec b = broadcast(at[q0 + c]);
@@ -123,6 +124,7 @@ void update_column_rows(double* panel, int rows, int t_begin, int j, int p0, int
   Vec sum = load_rows<Full>(cj + p0, count);
   for (int t = t_begin; t < j; ++t) {
     const double* ct = panel + static_cast<long>(t) * rows;
+    prefetch_rows_ahead(ct + p0);
     sum = subtract_product(sum, load_rows<Full>(ct + p0, count), broadcast(ct[j]));
   }
   if constexpr (Full) store(cj + p0, sum);

@@ -63,12 +63,6 @@ struct Rows {
   }
 };
 
-// The forward passes walk a column-major block a few rows at a time across all its columns: each
-// step reads a new cache line from every column, too many streams for the hardware prefetcher, so
-// each column's line kPrefetchRows rows ahead (two lines) is asked for by hand. On the 1.08M
-// factor this halved a 27-column forward solve on one thread.
-constexpr int kPrefetchRows = 16;
-
 // Solves L11 y = x_s in place for the supernode's k consecutive rows xs (L11: the top of the
 // column-major block, leading dimension r), row by row.
 template <class P>
@@ -79,7 +73,7 @@ void diagonal_forward(const double* block, int k, int r, double* xs, long stride
     acc.load_from(&xi);
     for (int j = 0; j < i; ++j) {
       const double* lj = block + static_cast<long>(j) * r + i;
-      __builtin_prefetch(lj + kPrefetchRows);
+      prefetch_rows_ahead(lj);
       acc.subtract_scaled(lj, xs + j * stride);
     }
     acc.scale(1.0 / block[static_cast<long>(i) * r + i]);
@@ -111,7 +105,7 @@ void update_rows_below(const double* block, int k, int r, int i, const int* rows
   acc.load_from(xi);
   for (int j = 0; j < k; ++j) {
     const double* lj = block + static_cast<long>(j) * r + i;
-    __builtin_prefetch(lj + kPrefetchRows);
+    prefetch_rows_ahead(lj);
     acc.subtract_scaled(lj, xs + j * stride);
   }
   acc.store_to(xi);
