@@ -9,6 +9,7 @@
 #include "example_set_impl.h"
 #include "gradient_operator.h"
 #include "heap_release.h"
+#include "huge_pages.h"
 #include "input_validation.h"
 #include "locality_order.h"
 #include "meshik/thread_limit.h"
@@ -24,10 +25,14 @@ ExampleSet::Impl::~Impl() = default;
 
 std::vector<double> ExampleSet::Impl::to_internal(const double* positions) const {
   std::vector<double> internal(3 * static_cast<size_t>(num_vertices));
+  to_internal(positions, internal.data());
+  return internal;
+}
+
+void ExampleSet::Impl::to_internal(const double* positions, double* internal) const {
   for (int v = 0; v < num_vertices; ++v)
     std::copy(positions + 3 * static_cast<size_t>(vertex_of_internal[v]),
-              positions + 3 * static_cast<size_t>(vertex_of_internal[v]) + 3, internal.begin() + 3 * v);
-  return internal;
+              positions + 3 * static_cast<size_t>(vertex_of_internal[v]) + 3, internal + 3 * static_cast<size_t>(v));
 }
 
 std::vector<double> ExampleSet::Impl::to_user(const std::vector<double>& positions) const {
@@ -103,14 +108,15 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
                      std::to_string(threads));
   const int team = thread_count(threads);
   // The examples in the internal order, copied on the team (one example per thread at a time; an
-  // allocation failure is rethrown after the loop).
+  // allocation failure is rethrown after the loop), on huge pages first touched by the copy.
   const int num_examples = impl.num_examples;
-  std::vector<std::vector<double>> internal_examples(num_examples);
+  std::vector<PageArray<double>> internal_examples(num_examples);
   std::vector<std::exception_ptr> copy_failure(num_examples);
 #pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
   for (int i = 0; i < num_examples; ++i) {
     try {
-      internal_examples[i] = impl.to_internal(examples[i]);
+      size_unwritten_on_huge_pages(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices));
+      impl.to_internal(examples[i], internal_examples[i].data());
     } catch (...) {
       copy_failure[i] = std::current_exception();
     }
@@ -118,7 +124,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   for (const std::exception_ptr& failure : copy_failure)
     if (failure) std::rethrow_exception(failure);
   std::vector<const double*> example_pointers;
-  for (const std::vector<double>& e : internal_examples) example_pointers.push_back(e.data());
+  for (const PageArray<double>& e : internal_examples) example_pointers.push_back(e.data());
   clock.lap("locality order");
   const int* triangles = impl.triangles.data();
   // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the system's
@@ -176,7 +182,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   compute_centroids(impl, example_pointers);
   // Nor the examples (their copies in the internal order).
   example_pointers.clear();
-  internal_examples = std::vector<std::vector<double>>();
+  internal_examples = std::vector<PageArray<double>>();
   clock.lap("centroids");
   // Only the values are kept here: the analysis holds the pattern.
   impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern);

@@ -54,6 +54,8 @@ struct ExampleSet::Impl {
 
   // positions: #V by 3 in the user's vertex order; returns them in the internal order.
   std::vector<double> to_internal(const double* positions) const;
+  // to_internal into `internal` (#V by 3, every entry written).
+  void to_internal(const double* positions, double* internal) const;
   // positions: #V by 3 in the internal order; returns them in the user's vertex order.
   std::vector<double> to_user(const std::vector<double>& positions) const;
 };

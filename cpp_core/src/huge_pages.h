@@ -62,15 +62,24 @@ struct DefaultInitAllocator : std::allocator<T> {
 template <typename T>
 using PageArray = std::vector<T, DefaultInitAllocator<T>>;
 
+// v sized n in new storage advised onto huge pages, its entries unwritten (a trivial T: their pages
+// untouched), for the caller to write first.
+template <typename T>
+void size_unwritten_on_huge_pages(PageArray<T>& v, size_t n) {
+  PageArray<T> fresh;
+  fresh.reserve(n);
+  advise_huge_pages(fresh.data(), n * sizeof(T));
+  fresh.resize(n);
+  v.swap(fresh);
+}
+
 // v = n copies of value in new storage advised onto huge pages, written (so first touched, the
 // kernel's zeroing included) by `team` threads in equal contiguous parts; below 64 Ki entries by
 // the caller alone. The same contents for any team.
 template <typename T>
 void assign_on_huge_pages(PageArray<T>& v, size_t n, const T& value, int team) {
   PageArray<T> fresh;
-  fresh.reserve(n);
-  advise_huge_pages(fresh.data(), n * sizeof(T));
-  fresh.resize(n);  // unwritten
+  size_unwritten_on_huge_pages(fresh, n);
   T* data = fresh.data();
   const long count = static_cast<long>(n);
 #pragma omp parallel for schedule(static) num_threads(team) if (count >= (long{1} << 16) && team > 1)
