@@ -43,8 +43,8 @@ inline T subtract_product(T v, T s, T x) {
 // Asks for the cache line two lines (16 doubles) past p. The dense kernels and the forward solves
 // walk column-major blocks a few rows at a time across many columns: each step reads a new line
 // from every column, too many streams for the hardware prefetcher. On the 1.08M system, asking
-// for each column's next lines by hand took a 27-column forward solve from 332-355 to 160-210 ms
-// and the numeric factorization from 1.07-1.29 to 0.74-1.0 s, on one thread (bench/README.md).
+// for each column's next lines by hand took a 27-column forward solve from 332-355 to 161-227 ms
+// and the numeric factorization from 1.07-1.29 to 0.90-0.99 s, on one thread (bench/README.md).
 inline void prefetch_rows_ahead(const double* p) { __builtin_prefetch(p + 16); }
 
 // A T (a Vec by default, or a HalfVec) from p (no alignment needed).
