@@ -145,7 +145,8 @@ constexpr int group_size() {
   return std::clamp((kVectorRegisters - P::kCount - 1) / P::kCount, 1, 8);
 }
 
-// Calls work(std::integral_constant<int, B>()) for B = count, 1 <= count <= Max.
+// Calls work(std::integral_constant<int, B>()) for B = count when 1 <= count <= Max; nothing for
+// count 0 (no rows or columns left).
 template <int Max, class Work>
 void with_count(int count, Work&& work) {
   if (count == Max) work(std::integral_constant<int, Max>());
