@@ -10,12 +10,16 @@
 
 namespace meshik::sparse {
 
+// kLanes doubles per vector register; kVectorRegisters of them (x86-64: 32 with AVX-512, else 16).
 #if defined(__AVX512F__)
 constexpr int kLanes = 8;
+constexpr int kVectorRegisters = 32;
 #elif defined(__AVX__)
 constexpr int kLanes = 4;
+constexpr int kVectorRegisters = 16;
 #else
 constexpr int kLanes = 2;
+constexpr int kVectorRegisters = 16;
 #endif
 
 typedef double Vec __attribute__((vector_size(kLanes * sizeof(double))));

@@ -131,12 +131,6 @@ void update_from_rows_below(const double* block, int k, int r, int j, const int*
   acc.store_to(xj);
 }
 
-#if defined(__AVX512F__)
-constexpr int kVectorRegisters = 32;
-#else
-constexpr int kVectorRegisters = 16;
-#endif
-
 // Rows (forward) or columns (backward) carried together with pack P: as many as keep their
 // P::kCount accumulators each, one row of x and a broadcast in the target's vector registers (more
 // would spill the accumulators to the stack on every multiply-add), at most 8.
