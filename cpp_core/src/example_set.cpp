@@ -9,10 +9,10 @@
 #include "example_set_impl.h"
 #include "gradient_operator.h"
 #include "heap_release.h"
-#include "huge_pages.h"
 #include "input_validation.h"
 #include "locality_order.h"
 #include "meshik/thread_limit.h"
+#include "page_arrays.h"
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
@@ -108,14 +108,14 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
                      std::to_string(threads));
   const int team = thread_count(threads);
   // The examples in the internal order, copied on the team (one example per thread at a time; an
-  // allocation failure is rethrown after the loop), on huge pages first touched by the copy.
+  // allocation failure is rethrown after the loop), first touched by the copy.
   const int num_examples = impl.num_examples;
   std::vector<PageArray<double>> internal_examples(num_examples);
   std::vector<std::exception_ptr> copy_failure(num_examples);
 #pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
   for (int i = 0; i < num_examples; ++i) {
     try {
-      size_unwritten_on_huge_pages(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices));
+      size_unwritten(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices), Pages::kDefault);
       impl.to_internal(examples[i], internal_examples[i].data());
     } catch (...) {
       copy_failure[i] = std::current_exception();

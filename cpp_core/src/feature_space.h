@@ -17,9 +17,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "huge_pages.h"
-#include "meshik/meshik.h"
 #include "mesh_topology.h"
+#include "meshik/meshik.h"
+#include "page_arrays.h"
 #include "triangle_frames.h"
 
 namespace meshik {

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "feature_space.h"
-#include "huge_pages.h"
+#include "page_arrays.h"
 #include "region_outer_products.h"
 #include "simd_clones.h"
 

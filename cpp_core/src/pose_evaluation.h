@@ -15,7 +15,7 @@
 
 #include "blend_regions.h"
 #include "example_set_impl.h"
-#include "huge_pages.h"
+#include "page_arrays.h"
 #include "pose_system.h"
 
 namespace meshik {

@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-#include "huge_pages.h"
+#include "page_arrays.h"
 
 namespace meshik {
 

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "huge_pages.h"
 #include "meshik/sparse_cholesky.h"
+#include "page_arrays.h"
 #include "sparse/dense_kernels.h"
 #include "sparse/simplicial_prefix.h"
 #include "thread_count.h"
@@ -257,9 +257,9 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
                           const std::vector<int>& original_column, PageArray<double>& values,
                           const SubtreeSchedule* schedule, int team) {
   const int ns = f.num_supernodes();
-  // Every block is filled before it is read (assemble_block): new storage goes on huge pages,
-  // first touched by the team.
-  if (values.size() != f.value_start[ns]) assign_on_huge_pages(values, f.value_start[ns], 0.0, team);
+  // Every block is filled before it is read (assemble_block): new storage goes on huge pages (read
+  // by every solve), first touched by the team.
+  if (values.size() != f.value_start[ns]) assign_by_team(values, f.value_start[ns], 0.0, team, Pages::kHuge);
   int failed = -1;
   if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
     Multifrontal mf(f, lower, lower_values, values, team + 1);

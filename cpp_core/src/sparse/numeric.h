@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "huge_pages.h"
+#include "page_arrays.h"
 #include "sparse/analysis.h"
 #include "sparse/subtree_schedule.h"
 

@@ -1,11 +1,14 @@
-// Arrays of megabytes written once, on transparent huge pages. The first touch of each fresh
-// 4 KiB page of a large allocation costs a kernel fault (zeroing included); the precompute writes
-// tens of megabytes once (the examples' features, the rest frames), and those faults were about
-// a sixth of its time on the elephant. With 2 MiB pages there are 512 times fewer. The factor's
-// values (301 MB at 1.08M triangles) and a pose's work buffers (121 MB there) too: on this
-// machine 301 MB took about 0.5 s on 4 KiB pages and 0.1 s on 2 MiB pages (under load).
-// The first touch is the kernel's zeroing of each page, on the thread that touches it: arrays
-// written by a parallel pass after they are sized (PageArray) are first touched by the whole team.
+// Arrays of megabytes whose pages a team touches first, and the long-lived ones on transparent
+// huge pages. The first touch of each fresh page is a kernel fault that zeroes it, on the thread
+// that touches it: arrays sized unwritten (PageArray) and then written by a parallel pass are
+// first touched by the whole team.
+// Huge pages (2 MiB) for the Solver's storage, made per handle set and read by every solve: the
+// factor's values (301 MB at 1.08M triangles) and a pose's work buffers (121 MB there). The
+// ExampleSet's arrays, written once before the first pose, stay on the default pages: on a virtual machine
+// that hands freed memory back to its host (free page reporting), a fresh huge page cost about
+// twice a fresh 4 KiB page, and with every array on huge pages the 1.08M first pose on 2 threads
+// took 2,331-2,875 ms against 2,184-2,197 ms so (bench/README.md, "Huge pages only where they are
+// read again").
 #pragma once
 
 #include <cstddef>
@@ -58,28 +61,31 @@ struct DefaultInitAllocator : std::allocator<T> {
   }
 };
 
-// An array of large storage whose pages are first touched by a team (assign_on_huge_pages below).
+// An array of large storage whose pages are first touched by a team (assign_by_team below).
 template <typename T>
 using PageArray = std::vector<T, DefaultInitAllocator<T>>;
 
-// v sized n in new storage advised onto huge pages, its entries unwritten (a trivial T: their pages
-// untouched), for the caller to write first.
+// Which pages new storage asks for: the system's default, or huge pages (advise_huge_pages).
+enum class Pages { kDefault, kHuge };
+
+// v sized n in new storage on `pages`, its entries unwritten (a trivial T: their pages untouched),
+// for the caller to write first.
 template <typename T>
-void size_unwritten_on_huge_pages(PageArray<T>& v, size_t n) {
+void size_unwritten(PageArray<T>& v, size_t n, Pages pages) {
   PageArray<T> fresh;
   fresh.reserve(n);
-  advise_huge_pages(fresh.data(), n * sizeof(T));
+  if (pages == Pages::kHuge) advise_huge_pages(fresh.data(), n * sizeof(T));
   fresh.resize(n);
   v.swap(fresh);
 }
 
-// v = n copies of value in new storage advised onto huge pages, written (so first touched, the
-// kernel's zeroing included) by `team` threads in equal contiguous parts; below 64 Ki entries by
-// the caller alone. The same contents for any team.
+// v = n copies of value in new storage on `pages`, written (so first touched, the kernel's zeroing
+// included) by `team` threads in equal contiguous parts; below 64 Ki entries by the caller alone.
+// The same contents for any team.
 template <typename T>
-void assign_on_huge_pages(PageArray<T>& v, size_t n, const T& value, int team) {
+void assign_by_team(PageArray<T>& v, size_t n, const T& value, int team, Pages pages) {
   PageArray<T> fresh;
-  size_unwritten_on_huge_pages(fresh, n);
+  size_unwritten(fresh, n, pages);
   T* data = fresh.data();
   const long count = static_cast<long>(n);
 #pragma omp parallel for schedule(static) num_threads(team) if (count >= (long{1} << 16) && team > 1)
@@ -93,7 +99,7 @@ void assign_on_huge_pages(PageArray<T>& v, size_t n, const T& value, int team) {
 template <typename T>
 void size_work_on_huge_pages(PageArray<T>& v, size_t n, int team) {
   if (n > v.capacity())
-    assign_on_huge_pages(v, n, T(), team);
+    assign_by_team(v, n, T(), team, Pages::kHuge);
   else
     v.resize(n, T());
 }
