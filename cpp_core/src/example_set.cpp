@@ -115,7 +115,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
 #pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
   for (int i = 0; i < num_examples; ++i) {
     try {
-      size_unwritten(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices), Pages::kDefault);
+      size_unwritten(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices));
       impl.to_internal(examples[i], internal_examples[i].data());
     } catch (...) {
       copy_failure[i] = std::current_exception();

@@ -71,14 +71,14 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   // threads idle, and early on the ExampleSet's analysis thread is there to take their cores.
   const int group_size = std::max(1, std::min(team, k));
   PageArray<Eigen::Matrix3d> rotations;
-  assign_by_team(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()), team, Pages::kDefault);
+  assign_by_team(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()), team);
   // Each log is written before it is read, and Eigen's vectors are not initialized: the pages are
   // first touched by the team's writes below.
   std::vector<std::vector<Eigen::Vector3d>> logs(group_size);
   std::vector<PageArray<double>> distances(group_size);
   for (int g = 0; g < group_size; ++g) {
     logs[g].resize(m);
-    assign_by_team(distances[g], adjacency.neighbour.size(), 0.0, team, Pages::kDefault);
+    assign_by_team(distances[g], adjacency.neighbour.size(), 0.0, team);
   }
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   const int batches_per_task = dynamic_chunk(features.num_batches, team);
@@ -152,7 +152,7 @@ ExampleFeatures compute_example_features(TriangleFrames& frames,
   const int team = thread_count(threads);
   visit_feature_values(features, [&](auto& values) {
     using Stored = typename std::decay_t<decltype(values)>::Value;
-    assign_by_team(values.nonlinear, 9 * slots * k, Stored(0), team, Pages::kDefault);
+    assign_by_team(values.nonlinear, 9 * slots * k, Stored(0), team);
   });
   features.plane_basis = std::move(frames.plane_basis);  // the same layout (kGradientLanes == kLanes)
 

@@ -236,7 +236,7 @@ std::vector<int> column_sources(int k, bool with_jacobian, int stride) {
 // (new storage first written by `team` threads).
 double* aligned_start(PageArray<double>& storage, size_t count, int team) {
   constexpr size_t kLineDoubles = 64 / sizeof(double);
-  size_work_on_huge_pages(storage, count + kLineDoubles, team);
+  size_work_by_team(storage, count + kLineDoubles, team);
   const size_t misalignment = reinterpret_cast<uintptr_t>(storage.data()) / sizeof(double) % kLineDoubles;
   return storage.data() + (kLineDoubles - misalignment) % kLineDoubles;
 }
@@ -298,7 +298,7 @@ PoseEvaluator::PoseEvaluator(const ExampleSet::Impl& set, const PoseSystem& syst
   }
   rhs_ = aligned_start(buffers.rhs, static_cast<size_t>(system.num_rows() + system.partition().num_extra_rows()) *
                                         row_width(3 * (k + 1)), team);
-  size_work_on_huge_pages(residual_, 6 * L * static_cast<size_t>(features_.num_batches), team);
+  size_work_by_team(residual_, 6 * L * static_cast<size_t>(features_.num_batches), team);
   // Handles' part of Q_j = sum over handle corners of target (x) g_q.
   const std::vector<int>& handle_of_vertex = system.handle_of_vertex();
   for (size_t slot = 0; slot < system.handle_triangles().size(); ++slot) {

@@ -97,10 +97,10 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
 TriangleFrames compute_triangle_frames(const double* rest, const int* triangles, int num_triangles, int team) {
   TriangleFrames frames;
   frames.num_triangles = num_triangles;
-  assign_by_team(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0, team, Pages::kDefault);
+  assign_by_team(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0, team);
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;
-  assign_by_team(frames.plane_basis, 6 * static_cast<size_t>(batches) * kGradientLanes, 0.0, team, Pages::kDefault);
-  assign_by_team(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team, Pages::kDefault);
+  assign_by_team(frames.plane_basis, 6 * static_cast<size_t>(batches) * kGradientLanes, 0.0, team);
+  assign_by_team(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
   // Chunks of batches handed out as threads come free (the ExampleSet's analysis thread shares the
   // cores); each batch's values are the same whichever thread computes them.
   const int batches_per_task = dynamic_chunk(batches, team);

@@ -257,9 +257,9 @@ void factorize_supernodal(const SymbolicFactor& f, const Pattern& lower, const d
                           const std::vector<int>& original_column, PageArray<double>& values,
                           const SubtreeSchedule* schedule, int team) {
   const int ns = f.num_supernodes();
-  // Every block is filled before it is read (assemble_block): new storage goes on huge pages (read
-  // by every solve), first touched by the team.
-  if (values.size() != f.value_start[ns]) assign_by_team(values, f.value_start[ns], 0.0, team, Pages::kHuge);
+  // Every block is filled before it is read (assemble_block): new storage is first touched by the
+  // team.
+  if (values.size() != f.value_start[ns]) assign_by_team(values, f.value_start[ns], 0.0, team);
   int failed = -1;
   if (schedule != nullptr && team > 1 && schedule->root.size() >= 2) {
     Multifrontal mf(f, lower, lower_values, values, team + 1);
