@@ -17,8 +17,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "mesh_topology.h"
 #include "meshik/meshik.h"
+#include "mesh_topology.h"
 #include "page_arrays.h"
 #include "triangle_frames.h"
 
