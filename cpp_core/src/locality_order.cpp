@@ -4,22 +4,9 @@
 #include <algorithm>
 #include <numeric>
 
+#include "sparse/breadth_first_order.h"
+
 namespace meshik {
-
-namespace {
-
-// The indices 0 .. #key - 1 ordered by key (each in [0, key_bound)), equal keys in index order:
-// what std::stable_sort gives, by counting in linear time.
-std::vector<int> stable_order_by_key(const std::vector<int>& key, int key_bound) {
-  std::vector<int> start(key_bound + 1, 0);
-  for (int k : key) ++start[k + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<int> order(key.size());
-  for (size_t i = 0; i < key.size(); ++i) order[start[key[i]]++] = static_cast<int>(i);
-  return order;
-}
-
-}  // namespace
 
 LocalityOrder locality_order(const int* triangles, int num_triangles, int num_vertices) {
   // Vertex neighbours through triangle edges, in compressed rows (duplicates are harmless).
@@ -36,35 +23,16 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
     }
 
   LocalityOrder order;
-  order.internal_of_vertex.assign(num_vertices, -1);
-  order.vertex_of_internal.reserve(num_vertices);
-  std::vector<int> degree(num_vertices);
-  for (int v = 0; v < num_vertices; ++v) degree[v] = start[v + 1] - start[v];
-  const std::vector<int> by_degree =
-      stable_order_by_key(degree, num_vertices > 0 ? *std::max_element(degree.begin(), degree.end()) + 1 : 0);
-  auto visit = [&](int v) {
-    order.internal_of_vertex[v] = static_cast<int>(order.vertex_of_internal.size());
-    order.vertex_of_internal.push_back(v);
-  };
-  for (int root : by_degree) {
-    if (order.internal_of_vertex[root] >= 0 || start[root + 1] == start[root]) continue;
-    size_t head = order.vertex_of_internal.size();
-    visit(root);
-    for (; head < order.vertex_of_internal.size(); ++head) {
-      const int v = order.vertex_of_internal[head];
-      for (int s = start[v]; s < start[v + 1]; ++s)
-        if (order.internal_of_vertex[neighbour[s]] < 0) visit(neighbour[s]);
-    }
-  }
-  for (int v = 0; v < num_vertices; ++v)
-    if (order.internal_of_vertex[v] < 0) visit(v);  // used by no triangle
+  order.vertex_of_internal = sparse::breadth_first_order(start, neighbour);
+  order.internal_of_vertex.resize(num_vertices);
+  for (int i = 0; i < num_vertices; ++i) order.internal_of_vertex[order.vertex_of_internal[i]] = i;
 
   std::vector<int> smallest(num_triangles);
   for (int j = 0; j < num_triangles; ++j)
     smallest[j] = std::min({order.internal_of_vertex[triangles[3 * j]],
                             order.internal_of_vertex[triangles[3 * j + 1]],
                             order.internal_of_vertex[triangles[3 * j + 2]]});
-  order.triangle_order = stable_order_by_key(smallest, num_vertices);
+  order.triangle_order = sparse::stable_order_by_key(smallest, num_vertices);
   return order;
 }
 

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <deque>
 #include <random>
 #include <vector>
 
+#include "sparse/breadth_first_order.h"
 #include "sparse/column_counts.h"
 #include "sparse/elimination_tree.h"
 #include "sparse/ordering.h"
@@ -71,6 +73,36 @@ std::vector<int> identity(int n) {
   return p;
 }
 
+// A queue-based breadth-first search written out for the test: roots by shortest list (ties:
+// lower node), neighbours in list order, isolated nodes last.
+std::vector<int> reference_breadth_first(const std::vector<int>& start, const std::vector<int>& neighbour) {
+  const int n = static_cast<int>(start.size()) - 1;
+  std::vector<int> roots(n);
+  for (int v = 0; v < n; ++v) roots[v] = v;
+  std::stable_sort(roots.begin(), roots.end(),
+                   [&](int u, int v) { return start[u + 1] - start[u] < start[v + 1] - start[v]; });
+  std::vector<bool> seen(n, false);
+  std::vector<int> order;
+  for (int root : roots) {
+    if (seen[root] || start[root + 1] == start[root]) continue;
+    std::deque<int> queue{root};
+    seen[root] = true;
+    while (!queue.empty()) {
+      const int v = queue.front();
+      queue.pop_front();
+      order.push_back(v);
+      for (int s = start[v]; s < start[v + 1]; ++s)
+        if (!seen[neighbour[s]]) {
+          seen[neighbour[s]] = true;
+          queue.push_back(neighbour[s]);
+        }
+    }
+  }
+  for (int v = 0; v < n; ++v)
+    if (!seen[v]) order.push_back(v);
+  return order;
+}
+
 }  // namespace
 
 TEST(SparseSymbolic, AdjacencyGraphIsSymmetricAndSorted) {
@@ -101,17 +133,22 @@ TEST(SparseSymbolic, OrderIsAmdOrderOfTheKeptNodesPostordered) {
           if (!left_out[v]) kept.push_back(v);
         }
         const int m = static_cast<int>(kept.size());
-        // amd_order of the kept nodes' submatrix, then the postorder of its elimination tree.
+        // amd_order of the kept nodes' submatrix numbered by spread_breadth_first, then the
+        // postorder of its elimination tree.
         BoolMatrix sub(m, std::vector<bool>(m));
         for (int s = 0; s < m; ++s)
           for (int t = 0; t < m; ++t) sub[s][t] = a[kept[s]][kept[t]];
         const meshik::CscMatrix sub_lower = lower_matrix(sub);
+        const Pattern sub_graph = adjacency_graph(sub_lower);
+        const std::vector<int> spread = spread_breadth_first(sub_graph.col_start, sub_graph.row_index);
+        const meshik::CscMatrix spread_lower = lower_matrix(permuted(sub, spread));
         std::vector<int> amd(m);
         double control[AMD_CONTROL];
         amd_defaults(control);
-        ASSERT_EQ(amd_order(m, sub_lower.col_start.data(), sub_lower.row_index.data(), amd.data(), control, nullptr),
-                  AMD_OK);
-        const Pattern sub_graph = adjacency_graph(sub_lower);
+        ASSERT_EQ(
+            amd_order(m, spread_lower.col_start.data(), spread_lower.row_index.data(), amd.data(), control, nullptr),
+            AMD_OK);
+        for (int& node : amd) node = spread[node];
         const std::vector<int> amd_inverse = invert_permutation(amd);
         const std::vector<int> amd_parent = elimination_tree(PermutedView{sub_graph, amd, amd_inverse});
         const std::vector<int> post = tree_postorder(amd_parent);
@@ -126,6 +163,38 @@ TEST(SparseSymbolic, OrderIsAmdOrderOfTheKeptNodesPostordered) {
           if (left_out[v]) EXPECT_EQ(order.inverse[v], m) << "left-out node " << v;
         EXPECT_EQ(order.parent, relabel_tree(amd_parent, post));
       }
+}
+
+TEST(SparseSymbolic, BreadthFirstOrderMatchesAQueue) {
+  unsigned seed = 500;
+  for (int n : {0, 1, 9, 80, 300})
+    for (double density : {0.0, 0.01, 0.05, 0.5}) {
+      SCOPED_TRACE("n=" + std::to_string(n) + " density=" + std::to_string(density));
+      const Pattern graph = adjacency_graph(lower_matrix(random_pattern(n, density, seed++)));
+      EXPECT_EQ(breadth_first_order(graph.col_start, graph.row_index),
+                reference_breadth_first(graph.col_start, graph.row_index));
+    }
+}
+
+TEST(SparseSymbolic, SpreadOrderTakesBreadthFirstChunksInBitReversedOrder) {
+  // A path of 1,000 nodes numbered from one end is its own breadth-first order: 4 chunks of 256
+  // (the last one short), taken as chunks 0, 2, 1, 3.
+  const int n = 1000;
+  std::vector<int> start{0}, neighbour;
+  for (int v = 0; v < n; ++v) {
+    if (v > 0) neighbour.push_back(v - 1);
+    if (v + 1 < n) neighbour.push_back(v + 1);
+    start.push_back(static_cast<int>(neighbour.size()));
+  }
+  ASSERT_EQ(kSpreadChunk, 256);
+  std::vector<int> expected;
+  for (int chunk : {0, 2, 1, 3})
+    for (int v = chunk * 256; v < std::min(n, (chunk + 1) * 256); ++v) expected.push_back(v);
+  EXPECT_EQ(spread_breadth_first(start, neighbour), expected);
+  // One chunk: the breadth-first order itself.
+  const Pattern graph = adjacency_graph(lower_matrix(random_pattern(200, 0.03, 9)));
+  EXPECT_EQ(spread_breadth_first(graph.col_start, graph.row_index),
+            breadth_first_order(graph.col_start, graph.row_index));
 }
 
 TEST(SparseSymbolic, EliminationTreeAndCountsMatchBruteForce) {

@@ -1,7 +1,7 @@
 // Fill-reducing ordering of a symmetric matrix: simplicial nodes (their neighbours already
 // form a clique, so eliminating them first creates no fill: the 4th-vertex unknowns of
-// MeshIK's kept form are such nodes) and approximate minimum degree (SuiteSparse AMD),
-// postordered along its elimination tree.
+// MeshIK's kept form are such nodes) and approximate minimum degree (SuiteSparse AMD, its ties
+// broken all over the graph), postordered along its elimination tree.
 #pragma once
 
 #include <vector>
@@ -15,6 +15,9 @@ namespace meshik::sparse {
 // adjacent, increasing.
 std::vector<int> simplicial_nodes(const Pattern& graph, int max_degree);
 
+// Consecutive nodes of a breadth-first order that spread_breadth_first keeps together.
+constexpr int kSpreadChunk = 256;
+
 // A symmetric permutation of some of a graph's nodes and the elimination tree of the permuted
 // matrix.
 struct TreeOrder {
@@ -24,10 +27,16 @@ struct TreeOrder {
 };
 
 // graph: as above; left_out: graph.n flags, nonzero for the nodes not to order. Returns AMD's
-// order of the subgraph induced by the other m nodes (the one amd_order gives for it) followed by
+// order of the subgraph induced by the other m nodes (the one amd_order gives for it renumbered
+// in chunks of a breadth-first order spread over the graph: ordering.cpp) followed by
 // a depth-first postorder of its elimination tree (children in increasing order), so that every
 // subtree is a run of consecutive columns. Fill and the tree's shape are AMD's.
 TreeOrder postordered_minimum_degree(const Pattern& graph, const std::vector<char>& left_out);
+
+// start, neighbour: a graph's lists as for breadth_first_order. Returns its n nodes renumbered for
+// AMD's tie-breaks (ordering.cpp): chunks of kSpreadChunk consecutive nodes of its breadth-first
+// order, the chunks in the bit-reversed order of their index; order[t] is the node numbered t.
+std::vector<int> spread_breadth_first(const std::vector<int>& start, const std::vector<int>& neighbour);
 
 // perm: a permutation of 0..n-1. Returns its inverse (inverse[perm[k]] = k).
 std::vector<int> invert_permutation(const std::vector<int>& perm);
