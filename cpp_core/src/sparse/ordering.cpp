@@ -50,19 +50,24 @@ std::vector<int> amd_permutation(const Pattern& graph, const std::vector<int>& l
     for (int t = 0; t < m; ++t) perm[t] = t;
     return perm;
   }
-  // AMD's numbering: node order[t] is AMD's node t; its lists in that numbering, sorted.
+  // AMD's numbering: node order[t] is AMD's node t. Its lists in that numbering, increasing: the
+  // graph is symmetric, so going over t in increasing order and appending t to each neighbour's
+  // list sorts every list without comparisons.
   const std::vector<int> order = spread_breadth_first(induced_start, induced);
   const std::vector<int> number = invert_permutation(order);
   const size_t room = std::min(2 * nnz + graph.n, static_cast<size_t>(INT_MAX) - 1);
   std::unique_ptr<int[]> workspace(new int[room]);
   std::vector<int> list_start(m), length(m);
   for (int t = 0, at = 0; t < m; ++t) {
-    const int v = order[t];
     list_start[t] = at;
-    for (int p = induced_start[v]; p < induced_start[v + 1]; ++p) workspace[at++] = number[induced[p]];
-    length[t] = at - list_start[t];
-    std::sort(workspace.get() + list_start[t], workspace.get() + at);
+    at += induced_start[order[t] + 1] - induced_start[order[t]];
   }
+  std::vector<int> fill(list_start);
+  for (int t = 0; t < m; ++t) {
+    const int v = order[t];
+    for (int p = induced_start[v]; p < induced_start[v + 1]; ++p) workspace[fill[number[induced[p]]]++] = t;
+  }
+  for (int t = 0; t < m; ++t) length[t] = fill[t] - list_start[t];
   std::vector<int> amd(m), inverse(m), nv(m), head(m), elen(m), degree(m), w(m);
   double control[AMD_CONTROL];
   amd_defaults(control);
