@@ -1,6 +1,7 @@
 // SparseCholesky on MeshIK's own matrices: the normal matrix G'^T G' of the deformation
 // gradients (4th-vertex unknowns kept and eliminated) of a generated sphere and of the real
-// horse, and the horse's graph Laplacian plus a shift.
+// horse, the horse's graph Laplacian plus a shift, and the elephant's fill against AMD on a
+// breadth-first numbering.
 #include <amd.h>
 #include <gtest/gtest.h>
 

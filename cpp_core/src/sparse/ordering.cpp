@@ -128,8 +128,9 @@ TreeOrder postordered_minimum_degree(const Pattern& graph, const std::vector<cha
 // horse subdivided 3 times (1.08M triangles) 10.24 to 7.89 G (stored values 37.7M to 34.1M), the
 // elephant subdivided twice 14.13 to 10.98 G, the lion subdivided 3 times 3.81 to 3.19 G, the
 // elephant 0.127 to 0.110 G; the horse subdivided twice stayed at 0.84 G. Chunks of 32 to 2,048 all
-// gained; 256 was the best or near it on each, and AMD took no longer (bench/README.md, "AMD's
-// tie-breaks spread over the mesh").
+// gained; 256 was the best or near it on each. The analysis takes 6-11 % longer on those patterns
+// (the breadth-first order and the renumbering), and more on a matrix whose own numbering already
+// suits AMD (bench/README.md, "AMD's tie-breaks spread over the mesh").
 std::vector<int> spread_breadth_first(const std::vector<int>& start, const std::vector<int>& neighbour) {
   const std::vector<int> breadth_first = breadth_first_order(start, neighbour);
   const int n = static_cast<int>(breadth_first.size());
