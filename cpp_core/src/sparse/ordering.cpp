@@ -60,14 +60,14 @@ std::vector<int> amd_permutation(const Pattern& graph, const std::vector<int>& l
   std::vector<int> list_start(m), length(m);
   for (int t = 0, at = 0; t < m; ++t) {
     list_start[t] = at;
-    at += induced_start[order[t] + 1] - induced_start[order[t]];
+    length[t] = induced_start[order[t] + 1] - induced_start[order[t]];
+    at += length[t];
   }
   std::vector<int> fill(list_start);
   for (int t = 0; t < m; ++t) {
     const int v = order[t];
     for (int p = induced_start[v]; p < induced_start[v + 1]; ++p) workspace[fill[number[induced[p]]]++] = t;
   }
-  for (int t = 0; t < m; ++t) length[t] = fill[t] - list_start[t];
   std::vector<int> amd(m), inverse(m), nv(m), head(m), elen(m), degree(m), w(m);
   double control[AMD_CONTROL];
   amd_defaults(control);
