@@ -15,6 +15,7 @@
 #include "../../bench/sphere_mesh.h"
 #include "meshik/sparse_cholesky.h"
 #include "sparse/breadth_first_order.h"
+#include "sparse/symmetric_graph.h"
 #include "sparse_test_matrices.h"
 
 using meshik::CscMatrix;
@@ -323,25 +324,15 @@ TEST(SparseCholeskyMesh, SpreadTieBreaksFillLessThanBreadthFirstNumbering) {
       meshik_bench::deformation_normal_matrix(mesh, meshik_bench::spread_handles(mesh.num_vertices(), 16), false);
   const int n = a.rows;
   // The graph numbered breadth first, as sorted lists of the full symmetric pattern.
-  std::vector<std::vector<int>> lists(n);
-  for (int j = 0; j < n; ++j)
-    for (int p = a.col_start[j]; p < a.col_start[j + 1]; ++p)
-      if (a.row_index[p] != j) {
-        lists[j].push_back(a.row_index[p]);
-        lists[a.row_index[p]].push_back(j);
-      }
-  std::vector<int> start{0}, neighbour;
-  for (const auto& list : lists) {
-    neighbour.insert(neighbour.end(), list.begin(), list.end());
-    start.push_back(static_cast<int>(neighbour.size()));
-  }
-  const std::vector<int> breadth_first = meshik::sparse::breadth_first_order(start, neighbour);
+  const meshik::sparse::Pattern graph = meshik::sparse::adjacency_graph(a);
+  const std::vector<int> breadth_first = meshik::sparse::breadth_first_order(graph.col_start, graph.row_index);
   std::vector<int> number(n);
   for (int t = 0; t < n; ++t) number[breadth_first[t]] = t;
   std::vector<int> numbered_start{0}, numbered;
   for (int t = 0; t < n; ++t) {
     std::vector<int> list;
-    for (int u : lists[breadth_first[t]]) list.push_back(number[u]);
+    const int v = breadth_first[t];
+    for (int p = graph.col_start[v]; p < graph.col_start[v + 1]; ++p) list.push_back(number[graph.row_index[p]]);
     list.push_back(t);
     std::sort(list.begin(), list.end());
     numbered.insert(numbered.end(), list.begin(), list.end());
