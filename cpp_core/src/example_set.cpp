@@ -13,6 +13,7 @@
 #include "locality_order.h"
 #include "meshik/thread_limit.h"
 #include "page_arrays.h"
+#include "page_pool.h"
 #include "phase_clock.h"
 #include "pose_evaluation.h"
 #include "pose_system.h"
@@ -199,7 +200,12 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   clock.lap(cached ? "analysis (cached)" : "analysis");  // with more than one thread: the wait for it
 }
 
-ExampleSet::~ExampleSet() = default;
+// The set's arrays, and the pages the pool kept for its Solvers, go back to the system.
+ExampleSet::~ExampleSet() {
+  if (!impl_) return;
+  impl_.reset();
+  release_pooled_pages();
+}
 ExampleSet::ExampleSet(ExampleSet&&) noexcept = default;
 ExampleSet& ExampleSet::operator=(ExampleSet&&) noexcept = default;
 

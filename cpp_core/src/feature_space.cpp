@@ -75,11 +75,12 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   // Each log is written before it is read, and Eigen's vectors are not initialized: the pages are
   // first touched by the team's writes below.
   std::vector<std::vector<Eigen::Vector3d>> logs(group_size);
-  std::vector<PageArray<double>> distances(group_size);
-  for (int g = 0; g < group_size; ++g) {
-    logs[g].resize(m);
-    assign_by_team(distances[g], adjacency.neighbour.size(), 0.0, team);
-  }
+  for (int g = 0; g < group_size; ++g) logs[g].resize(m);
+  // The group's edge distances, member g's from entry g #adjacency on (one array, its pages kept for
+  // the Solver's arrays once the features are done: page_pool.h).
+  const size_t edges = adjacency.neighbour.size();
+  PageArray<double> distances;
+  assign_by_team(distances, edges * group_size, 0.0, team);
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   const int batches_per_task = dynamic_chunk(features.num_batches, team);
   for (int group = 0, members = k % group_size == 0 ? group_size : k % group_size; group < k;
@@ -114,7 +115,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
 #pragma omp for schedule(dynamic, batches_per_task)
           for (int batch = 0; batch < features.num_batches; ++batch)
             rotation_edge_distances(adjacency, rotations.data(), batch * kLanes, std::min(m, (batch + 1) * kLanes),
-                                    distances[g].data());
+                                    distances.data() + edges * g);
         }
       }
     }
@@ -123,7 +124,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       if (!consistent_branches) continue;
       // The principal logs are in place: write those given another branch.
       const int i = group + g;
-      for (int j : choose_consistent_log_branches(adjacency, components, distances[g].data(), logs[g])) {
+      for (int j : choose_consistent_log_branches(adjacency, components, distances.data() + edges * g, logs[g])) {
         Stored* block = values.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
         for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = static_cast<Stored>(logs[g][j](r));
       }

@@ -1,6 +1,8 @@
 // Arrays of megabytes whose pages a team touches first. The first touch of each fresh page is a
 // kernel fault that zeroes it, on the thread that touches it: arrays sized unwritten (PageArray)
-// and then written by a parallel pass are first touched by the whole team.
+// and then written by a parallel pass are first touched by the whole team. Arrays from
+// kPooledArrayBytes take the pages of such arrays freed before them where there are any
+// (page_pool.h): their entries are written before they are read, never assumed zero.
 // The pages are the system's default (no madvise for transparent huge pages): on a virtual machine
 // that hands free memory back to its host (free page reporting), a fresh 2 MiB page cost about
 // twice a fresh 4 KiB page, and with the ExampleSet's arrays, the factor's values and a pose's
@@ -9,15 +11,19 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <new>
 #include <utility>
 #include <vector>
 
+#include "page_pool.h"
+
 namespace meshik {
 
 // std::allocator whose construct() without a value default-initializes: resize() leaves new
 // entries of a trivial type unwritten (their pages untouched) for a parallel pass to write first.
+// Storage from kPooledArrayBytes is the page pool's.
 template <typename T>
 struct DefaultInitAllocator : std::allocator<T> {
   template <typename U>
@@ -27,6 +33,16 @@ struct DefaultInitAllocator : std::allocator<T> {
   DefaultInitAllocator() noexcept = default;
   template <typename U>
   DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  T* allocate(size_t n) {
+    if (pooled(n)) return static_cast<T*>(take_pages(n * sizeof(T)));
+    return std::allocator<T>::allocate(n);  // throws for a size past the addresses
+  }
+  void deallocate(T* p, size_t n) noexcept {
+    if (pooled(n))
+      give_pages(p, n * sizeof(T));
+    else
+      std::allocator<T>::deallocate(p, n);
+  }
   template <typename U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;
@@ -34,6 +50,12 @@ struct DefaultInitAllocator : std::allocator<T> {
   template <typename U, typename... Args>
   void construct(U* p, Args&&... args) {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+
+ private:
+  // Whether n entries take kPooledArrayBytes or more (and their size is a size_t).
+  static bool pooled(size_t n) {
+    return n >= (kPooledArrayBytes + sizeof(T) - 1) / sizeof(T) && n <= SIZE_MAX / sizeof(T);
   }
 };
 
