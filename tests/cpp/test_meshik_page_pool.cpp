@@ -90,12 +90,13 @@ TEST(PagePool, SplitsAKeptArrayAndAppendsFreshPages) {
 TEST(PagePool, KeepsAtMostItsCapacityTheLatestFirst) {
   meshik::release_pooled_pages();
   const size_t bytes = 100 * kMiB;
+  const std::uint64_t count = kPoolCapacityBytes / bytes + 2;
   std::vector<std::uint64_t*> arrays;
-  for (std::uint64_t a = 0; a < 3; ++a) arrays.push_back(take_counting(bytes, a << 40));
+  for (std::uint64_t a = 0; a < count; ++a) arrays.push_back(take_counting(bytes, a << 40));
   for (std::uint64_t* array : arrays) meshik::give_pages(array, bytes);
   EXPECT_EQ(pooled_bytes(), kPoolCapacityBytes);
   auto* latest = static_cast<std::uint64_t*>(meshik::take_pages(bytes));
-  EXPECT_EQ(count_not_counting(latest, 0, bytes / 8, std::uint64_t{2} << 40), 0u);
+  EXPECT_EQ(count_not_counting(latest, 0, bytes / 8, (count - 1) << 40), 0u);
   meshik::give_pages(latest, bytes);
   meshik::release_pooled_pages();
   EXPECT_EQ(pooled_bytes(), 0u);
