@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "sparse/breadth_first_order.h"
+#include "sparse/ordering.h"
 
 namespace meshik {
 
@@ -24,8 +25,7 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
 
   LocalityOrder order;
   order.vertex_of_internal = sparse::breadth_first_order(start, neighbour);
-  order.internal_of_vertex.resize(num_vertices);
-  for (int i = 0; i < num_vertices; ++i) order.internal_of_vertex[order.vertex_of_internal[i]] = i;
+  order.internal_of_vertex = sparse::invert_permutation(order.vertex_of_internal);
 
   std::vector<int> smallest(num_triangles);
   for (int j = 0; j < num_triangles; ++j)
