@@ -72,10 +72,11 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   const int group_size = std::max(1, std::min(team, k));
   PageArray<Eigen::Matrix3d> rotations;
   assign_by_team(rotations, m, Eigen::Matrix3d(Eigen::Matrix3d::Zero()), team);
-  // Each log is written before it is read, and Eigen's vectors are not initialized: the pages are
-  // first touched by the team's writes below.
-  std::vector<std::vector<Eigen::Vector3d>> logs(group_size);
-  for (int g = 0; g < group_size; ++g) logs[g].resize(m);
+  // The group's principal logs, member g's from entry g m on (one array, its pages kept for the
+  // Solver's arrays like the distances'). Each log is written before it is read, and Eigen's
+  // vectors are not initialized: the pages are first touched by the team's writes below.
+  PageArray<Eigen::Vector3d> logs;
+  size_unwritten(logs, static_cast<size_t>(m) * group_size);
   // The group's edge distances, member g's from entry g #adjacency on (one array, its pages kept for
   // the Solver's arrays once the features are done: page_pool.h).
   const size_t edges = adjacency.neighbour.size();
@@ -108,7 +109,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
               values.nonlinear[9 * kLanes * block + r * kLanes + l] = static_cast<Stored>(log[r][l]);
           for (int l = 0; l < count; ++l) {
             for (int e = 0; e < 9; ++e) rotations[first + l](e / 3, e % 3) = rotation[e][l];
-            logs[g][first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
+            logs[static_cast<size_t>(m) * g + first + l] = Eigen::Vector3d(log[0][l], log[1][l], log[2][l]);
           }
         }
         if (consistent_branches) {
@@ -124,9 +125,10 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       if (!consistent_branches) continue;
       // The principal logs are in place: write those given another branch.
       const int i = group + g;
-      for (int j : choose_consistent_log_branches(adjacency, components, distances.data() + edges * g, logs[g])) {
+      Eigen::Vector3d* member_logs = logs.data() + static_cast<size_t>(m) * g;
+      for (int j : choose_consistent_log_branches(adjacency, components, distances.data() + edges * g, member_logs)) {
         Stored* block = values.nonlinear.data() + 9 * kLanes * (static_cast<size_t>(j / kLanes) * k + i);
-        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = static_cast<Stored>(logs[g][j](r));
+        for (int r = 0; r < 3; ++r) block[r * kLanes + j % kLanes] = static_cast<Stored>(member_logs[j](r));
       }
     }
     for (int i = group; i < group + members; ++i)

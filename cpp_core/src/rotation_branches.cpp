@@ -72,8 +72,8 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
 
 std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                                 const TriangleComponents& components, const double* distances,
-                                                std::vector<Eigen::Vector3d>& logs) {
-  const int m = static_cast<int>(logs.size());
+                                                Eigen::Vector3d* logs) {
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
   // The unsafe edges, along which a branch could leave the principal one (both logs principal):
   // one end at least is turned by half the safe offset or more.
   // The least rotated triangle of each component (the least index among equals) is its root.
@@ -194,7 +194,7 @@ void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                     std::vector<Eigen::Vector3d>& logs) {
   std::vector<double> distances(adjacency.neighbour.size());
   rotation_edge_distances(adjacency, rotations.data(), 0, static_cast<int>(rotations.size()), distances.data());
-  choose_consistent_log_branches(adjacency, triangle_components(adjacency), distances.data(), logs);
+  choose_consistent_log_branches(adjacency, triangle_components(adjacency), distances.data(), logs.data());
 }
 
 }  // namespace meshik

@@ -33,7 +33,7 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
                              int last, double* distances);
 
 // distances: one per adjacency entry (rotation_edge_distances); logs: the #F principal logs of
-// the triangles' rotations, replaced by consistent branches. Grows a minimum spanning tree of the
+// the triangles' rotations (#F the adjacency's triangles), replaced by consistent branches. Grows a minimum spanning tree of the
 // edge adjacency (Prim's, ties broken by the lower tree triangle, then the lower new one) from the
 // least rotated triangle of each component, which keeps its principal log, and gives every
 // triangle added the branch closest to the log of the tree neighbour it was reached from, so
@@ -45,7 +45,7 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
 // principal ones.
 std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
                                                 const TriangleComponents& components, const double* distances,
-                                                std::vector<Eigen::Vector3d>& logs);
+                                                Eigen::Vector3d* logs);
 
 // The same from the rotations (#F) themselves.
 void choose_consistent_log_branches(const TriangleAdjacency& adjacency,
