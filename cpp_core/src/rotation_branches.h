@@ -33,14 +33,14 @@ void rotation_edge_distances(const TriangleAdjacency& adjacency, const Eigen::Ma
                              int last, double* distances);
 
 // distances: one per adjacency entry (rotation_edge_distances); logs: the #F principal logs of
-// the triangles' rotations (#F the adjacency's triangles), replaced by consistent branches. Grows a minimum spanning tree of the
-// edge adjacency (Prim's, ties broken by the lower tree triangle, then the lower new one) from the
-// least rotated triangle of each component, which keeps its principal log, and gives every
-// triangle added the branch closest to the log of the tree neighbour it was reached from, so
-// branches are only copied between nearly equal rotations. Where the tree cannot change a branch
-// (a basin of close rotations whose angles are small enough, entered from a principal log) the
-// basin's triangles keep their principal logs without the tree being grown through them: the
-// branches are those of the whole tree, bit for bit.
+// the triangles' rotations (#F: the adjacency's triangles), replaced by consistent branches.
+// Grows a minimum spanning tree of the edge adjacency (Prim's, ties broken by the lower tree
+// triangle, then the lower new one) from the least rotated triangle of each component, which keeps
+// its principal log, and gives every triangle added the branch closest to the log of the tree
+// neighbour it was reached from, so branches are only copied between nearly equal rotations.
+// Where the tree cannot change a branch (a basin of close rotations whose angles are small enough,
+// entered from a principal log) the basin's triangles keep their principal logs without the tree
+// being grown through them: the branches are those of the whole tree, bit for bit.
 // components: triangle_components(adjacency). Returns the triangles whose logs are no longer the
 // principal ones.
 std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacency,
