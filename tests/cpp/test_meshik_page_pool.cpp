@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "page_arrays.h"
 #include "page_pool.h"
 #include "test_meshik_support.h"
@@ -166,20 +168,25 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST(PagePool, PoseOnPagesOfNotANumberIsTheSameBits) {
-  // 321,602 triangles (the last batch of 8 padded): the features' values (34 MiB) and the factor's
-  // are pooled arrays.
-  const meshik_test::ExampleMeshes meshes = meshik_test::make_tube_examples(401, 401);
-  ASSERT_GE(9 * sizeof(float) * meshes.examples.size() * meshes.num_triangles(), kPooledArrayBytes);
+  // 321,602 triangles (the last batch of 8 padded) and 5 examples, two of them twisted past a half
+  // turn (their logs take other branches): the features' values (55 MiB), the factor's, and on 5
+  // threads the principal logs and edge distances of the group of 5 (37 MiB each) are pooled arrays.
+  meshik_test::ExampleMeshes meshes = meshik_test::make_tube_examples(401, 401);
+  for (double twist : {4.0, -3.5})
+    meshes.examples.push_back(meshik_test::make_tube_examples(401, 401, twist).examples[1]);
+  const size_t group = meshes.examples.size();
+  ASSERT_GE(9 * sizeof(float) * group * meshes.num_triangles(), kPooledArrayBytes);
+  ASSERT_GE(sizeof(Eigen::Vector3d) * group * meshes.num_triangles(), kPooledArrayBytes);
   meshik::release_pooled_pages();
   const std::vector<double> fresh = pose(meshes, 1);
-  // The pool full of quiet NaNs before the set is built; the pose on 2 threads (the same bits as
-  // on 1).
+  // The pool full of quiet NaNs before the set is built; the pose on as many threads as examples
+  // (the same bits as on 1).
   auto* poison = static_cast<double*>(meshik::take_pages(kPoolCapacityBytes));
   for (size_t e = 0; e < kPoolCapacityBytes / sizeof(double); ++e)
     poison[e] = std::numeric_limits<double>::quiet_NaN();
   meshik::give_pages(poison, kPoolCapacityBytes);
   ASSERT_EQ(pooled_bytes(), kPoolCapacityBytes);
-  EXPECT_TRUE(same_bits(pose(meshes, 2), fresh));
+  EXPECT_TRUE(same_bits(pose(meshes, static_cast<int>(group)), fresh));
 }
 
 }  // namespace
