@@ -171,7 +171,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   }
   clock.lap("system pattern");
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team);
-  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices);
+  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices, team);
   clock.lap("topology and frames");
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
@@ -186,7 +186,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   internal_examples = std::vector<PageArray<double>>();
   clock.lap("centroids");
   // Only the values are kept here: the analysis holds the pattern.
-  impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern);
+  impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern, team);
   clock.lap("normal matrix");
   if (analysis.valid())
     analysis.get();

@@ -63,26 +63,56 @@ CscMatrix eliminated_lower_pattern(const int* triangles, int num_triangles, cons
   return pattern;
 }
 
-std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const int* triangles,
-                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern) {
-  std::vector<double> values(pattern.row_index.size(), 0.0);
-  // Per triangle and coordinate the energy is |sum_q x_q g_q - target|^2: add the Gram of g.
+namespace {
+
+// Adds to `values` (eliminated_lower_values' layout) the Gram terms of every triangle corner whose
+// column lies in [first_column, last_column), triangles in increasing order; the other columns'
+// entries are left alone. Arguments as eliminated_lower_values'.
+void add_corner_grams(const TriangleFrames& frames, const int* triangles, const std::vector<int>& row_of_vertex,
+                      const CscMatrix& pattern, int first_column, int last_column, double* values) {
+  const int* col_start = pattern.col_start.data();
+  const int* row_index = pattern.row_index.data();
   for (int j = 0; j < frames.num_triangles; ++j) {
     const int* t = triangles + 3 * j;
+    const int rows[3] = {row_of_vertex[t[0]], row_of_vertex[t[1]], row_of_vertex[t[2]]};
+    if (std::max({rows[0], rows[1], rows[2]}) < first_column || std::min({rows[0], rows[1], rows[2]}) >= last_column)
+      continue;
     double g[6];
     corner_gradients(frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
     for (int p = 0; p < 3; ++p) {
-      const int col = row_of_vertex[t[p]];
-      const auto begin = pattern.row_index.begin() + pattern.col_start[col];
-      const auto end = pattern.row_index.begin() + pattern.col_start[col + 1];
+      const int col = rows[p];
+      if (col < first_column || col >= last_column) continue;
       for (int q = 0; q < 3; ++q) {
-        const int row = row_of_vertex[t[q]];
-        if (row < col) continue;
-        const auto at = std::lower_bound(begin, end, row);
-        values[at - pattern.row_index.begin()] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
+        if (rows[q] < col) continue;
+        const int at = static_cast<int>(std::lower_bound(row_index + col_start[col], row_index + col_start[col + 1],
+                                                         rows[q]) - row_index);
+        values[at] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const int* triangles,
+                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern,
+                                            int team) {
+  std::vector<double> values(pattern.row_index.size(), 0.0);
+  // Per triangle and coordinate the energy is |sum_q x_q g_q - target|^2: add the Gram of g. Each
+  // thread takes a range of columns holding about an equal share of the entries, and goes over all
+  // the triangles for the corners in its range.
+  const int parts = std::max(1, std::min(team, pattern.cols));
+  std::vector<int> first_column(parts + 1, pattern.cols);
+  for (int part = 0; part < parts; ++part) {
+    const size_t share = pattern.row_index.size() * static_cast<size_t>(part) / parts;
+    first_column[part] = static_cast<int>(
+        std::upper_bound(pattern.col_start.begin(), pattern.col_start.end() - 1, static_cast<int>(share)) -
+        pattern.col_start.begin() - 1);
+  }
+#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
+  for (int part = 0; part < parts; ++part)
+    add_corner_grams(frames, triangles, row_of_vertex, pattern, first_column[part], first_column[part + 1],
+                     values.data());
   return values;
 }
 

@@ -37,9 +37,11 @@ std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, co
 CscMatrix eliminated_lower_pattern(const int* triangles, int num_triangles, const std::vector<int>& row_of_vertex,
                                    int num_rows);
 
-// frames / triangles: the rest mesh's; row_of_vertex: as above; pattern: eliminated_lower_pattern's.
-// Returns K's values on the pattern (one per entry, in its order).
+// frames / triangles: the rest mesh's; row_of_vertex: as above; pattern: eliminated_lower_pattern's;
+// team: the threads to use. Returns K's values on the pattern (one per entry, in its order), the same
+// bits for any team: each entry sums its triangles' terms in increasing triangle order.
 std::vector<double> eliminated_lower_values(const TriangleFrames& frames, const int* triangles,
-                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern);
+                                            const std::vector<int>& row_of_vertex, const CscMatrix& pattern,
+                                            int team = 1);
 
 }  // namespace meshik

@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <numeric>
 
 namespace meshik {
 
 namespace {
+
+// triangle_adjacency gives each thread of its team at least this many triangles (fewer threads on
+// a smaller mesh).
+constexpr int kTrianglesPerThread = 16384;
 
 // Root of x in a union-find forest, halving paths on the way.
 int find_root(std::vector<int>& parent, int x) {
@@ -46,7 +51,7 @@ VertexComponents vertex_components(const int* triangles, int num_triangles, int 
   return components;
 }
 
-TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices) {
+TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices, int team) {
   // The triangles' edges by their lower vertex, in compressed rows: (higher vertex, triangle),
   // triangles ascending. A triangle with distinct corners holds an edge {a, b} exactly when it
   // holds both a and b.
@@ -65,20 +70,50 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
         edges[2 * at + 1] = j;
       }
   }
+  // Each thread finds the neighbours of a contiguous range of triangles (their counts into
+  // start[j + 1]); the ranges' lists are then joined in order. (An allocation failure is rethrown
+  // after the loop.)
   TriangleAdjacency adjacency;
-  adjacency.start.reserve(num_triangles + 1);
-  adjacency.neighbour.reserve(3 * static_cast<std::size_t>(num_triangles));
-  adjacency.start.push_back(0);
-  for (int j = 0; j < num_triangles; ++j) {
-    for (int q = 0; q < 3; ++q) {
-      const int a = triangles[3 * j + q], b = triangles[3 * j + (q + 1) % 3];
-      const int low = std::min(a, b), high = std::max(a, b);
-      // The other triangles on the edge (a, b), ascending.
-      for (int e = start[low]; e < start[low + 1]; ++e)
-        if (edges[2 * e] == high && edges[2 * e + 1] != j) adjacency.neighbour.push_back(edges[2 * e + 1]);
+  adjacency.start.assign(num_triangles + 1, 0);
+  const int parts = std::max(1, std::min(team, num_triangles / kTrianglesPerThread));
+  const auto first_of_part = [num_triangles, parts](int part) {
+    return static_cast<int>(static_cast<long long>(num_triangles) * part / parts);
+  };
+  std::vector<std::vector<int>> part_neighbours(parts);
+  std::vector<std::exception_ptr> part_failure(parts);
+#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
+  for (int part = 0; part < parts; ++part) {
+    const int first = first_of_part(part), last = first_of_part(part + 1);
+    std::vector<int>& neighbours = part_neighbours[part];
+    try {
+      neighbours.reserve(3 * static_cast<std::size_t>(last - first));
+      for (int j = first; j < last; ++j) {
+        const std::size_t before = neighbours.size();
+        for (int q = 0; q < 3; ++q) {
+          const int a = triangles[3 * j + q], b = triangles[3 * j + (q + 1) % 3];
+          const int low = std::min(a, b), high = std::max(a, b);
+          // The other triangles on the edge (a, b), ascending.
+          for (int e = start[low]; e < start[low + 1]; ++e)
+            if (edges[2 * e] == high && edges[2 * e + 1] != j) neighbours.push_back(edges[2 * e + 1]);
+        }
+        adjacency.start[j + 1] = static_cast<int>(neighbours.size() - before);
+      }
+    } catch (...) {
+      part_failure[part] = std::current_exception();
     }
-    adjacency.start.push_back(static_cast<int>(adjacency.neighbour.size()));
   }
+  for (const std::exception_ptr& failure : part_failure)
+    if (failure) std::rethrow_exception(failure);
+  std::partial_sum(adjacency.start.begin(), adjacency.start.end(), adjacency.start.begin());
+  if (parts == 1) {
+    adjacency.neighbour = std::move(part_neighbours[0]);
+    return adjacency;
+  }
+  adjacency.neighbour.resize(adjacency.start[num_triangles]);
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part)
+    std::copy(part_neighbours[part].begin(), part_neighbours[part].end(),
+              adjacency.neighbour.begin() + adjacency.start[first_of_part(part)]);
   return adjacency;
 }
 

@@ -23,8 +23,9 @@ struct TriangleAdjacency {
   std::vector<int> neighbour;  // sum of the neighbour counts
 };
 
-// triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)).
-TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices);
+// triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)); team: the threads to
+// use (the same adjacency for any team).
+TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices, int team = 1);
 
 // Connected components of the triangles through their adjacency.
 struct TriangleComponents {
