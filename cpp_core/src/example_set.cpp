@@ -1,5 +1,6 @@
 // ExampleSet: validation and precomputation of the rest mesh and the examples, and blend().
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <future>
@@ -170,8 +171,16 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     rows_ready.set_value();
   }
   clock.lap("system pattern");
+  // The team less the core the analysis thread holds while it runs, for the adjacency and the normal
+  // matrix (both the same for any team): short passes that time-sharing a core would only slow.
+  const auto team_beside_analysis = [&analysis, team] {
+    const bool running =
+        analysis.valid() && analysis.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+    return running ? std::max(1, team - 1) : team;
+  };
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team);
-  TriangleAdjacency adjacency = triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices, team);
+  TriangleAdjacency adjacency =
+      triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices, team_beside_analysis());
   clock.lap("topology and frames");
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
@@ -186,7 +195,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   internal_examples = std::vector<PageArray<double>>();
   clock.lap("centroids");
   // Only the values are kept here: the analysis holds the pattern.
-  impl.system_values = eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern, team);
+  impl.system_values =
+      eliminated_lower_values(impl.frames, triangles, impl.system_row_of_vertex, pattern, team_beside_analysis());
   clock.lap("normal matrix");
   if (analysis.valid())
     analysis.get();
