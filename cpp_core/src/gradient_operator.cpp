@@ -69,24 +69,25 @@ namespace {
 // column lies in [first_column, last_column), triangles in increasing order; the other columns'
 // entries are left alone. Arguments as eliminated_lower_values'.
 void add_corner_grams(const TriangleFrames& frames, const int* triangles, const std::vector<int>& row_of_vertex,
-                      const CscMatrix& pattern, int first_column, int last_column, double* values) {
-  const int* col_start = pattern.col_start.data();
-  const int* row_index = pattern.row_index.data();
+                      const CscMatrix& pattern, int first_column, int last_column, double* __restrict values) {
+  const auto in_range = [first_column, last_column](int column) {
+    return column >= first_column && column < last_column;
+  };
   for (int j = 0; j < frames.num_triangles; ++j) {
     const int* t = triangles + 3 * j;
-    const int rows[3] = {row_of_vertex[t[0]], row_of_vertex[t[1]], row_of_vertex[t[2]]};
-    if (std::max({rows[0], rows[1], rows[2]}) < first_column || std::min({rows[0], rows[1], rows[2]}) >= last_column)
-      continue;
+    if (!in_range(row_of_vertex[t[0]]) && !in_range(row_of_vertex[t[1]]) && !in_range(row_of_vertex[t[2]])) continue;
     double g[6];
     corner_gradients(frames.gradient.data() + kGradientEntries * static_cast<size_t>(j), g);
     for (int p = 0; p < 3; ++p) {
-      const int col = rows[p];
-      if (col < first_column || col >= last_column) continue;
+      const int col = row_of_vertex[t[p]];
+      if (!in_range(col)) continue;
+      const auto begin = pattern.row_index.begin() + pattern.col_start[col];
+      const auto end = pattern.row_index.begin() + pattern.col_start[col + 1];
       for (int q = 0; q < 3; ++q) {
-        if (rows[q] < col) continue;
-        const int at = static_cast<int>(std::lower_bound(row_index + col_start[col], row_index + col_start[col + 1],
-                                                         rows[q]) - row_index);
-        values[at] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
+        const int row = row_of_vertex[t[q]];
+        if (row < col) continue;
+        const auto at = std::lower_bound(begin, end, row);
+        values[at - pattern.row_index.begin()] += g[2 * p] * g[2 * q] + g[2 * p + 1] * g[2 * q + 1];
       }
     }
   }
