@@ -70,9 +70,9 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
         edges[2 * at + 1] = j;
       }
   }
-  // Each thread finds the neighbours of a contiguous range of triangles (their counts into
-  // start[j + 1]); the ranges' lists are then joined in order. (An allocation failure is rethrown
-  // after the loop.)
+  // Each thread lists the neighbours of a contiguous range of triangles (start[j + 1]: the length of
+  // its range's list up to triangle j); the ranges' lists are then joined in order. (An allocation
+  // failure is rethrown after the loop.)
   TriangleAdjacency adjacency;
   adjacency.start.assign(num_triangles + 1, 0);
   const int parts = std::max(1, std::min(team, num_triangles / kTrianglesPerThread));
@@ -88,7 +88,6 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
     try {
       neighbours.reserve(3 * static_cast<std::size_t>(last - first));
       for (int j = first; j < last; ++j) {
-        const std::size_t before = neighbours.size();
         for (int q = 0; q < 3; ++q) {
           const int a = triangles[3 * j + q], b = triangles[3 * j + (q + 1) % 3];
           const int low = std::min(a, b), high = std::max(a, b);
@@ -96,7 +95,7 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
           for (int e = start[low]; e < start[low + 1]; ++e)
             if (edges[2 * e] == high && edges[2 * e + 1] != j) neighbours.push_back(edges[2 * e + 1]);
         }
-        adjacency.start[j + 1] = static_cast<int>(neighbours.size() - before);
+        adjacency.start[j + 1] = static_cast<int>(neighbours.size());
       }
     } catch (...) {
       part_failure[part] = std::current_exception();
@@ -104,16 +103,19 @@ TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, in
   }
   for (const std::exception_ptr& failure : part_failure)
     if (failure) std::rethrow_exception(failure);
-  std::partial_sum(adjacency.start.begin(), adjacency.start.end(), adjacency.start.begin());
   if (parts == 1) {
     adjacency.neighbour = std::move(part_neighbours[0]);
     return adjacency;
   }
-  adjacency.neighbour.resize(adjacency.start[num_triangles]);
-#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  std::vector<int> offset(parts + 1, 0);  // where each range's list goes
   for (int part = 0; part < parts; ++part)
-    std::copy(part_neighbours[part].begin(), part_neighbours[part].end(),
-              adjacency.neighbour.begin() + adjacency.start[first_of_part(part)]);
+    offset[part + 1] = offset[part] + static_cast<int>(part_neighbours[part].size());
+  adjacency.neighbour.resize(offset[parts]);
+#pragma omp parallel for schedule(static, 1) num_threads(parts)
+  for (int part = 0; part < parts; ++part) {
+    for (int j = first_of_part(part); j < first_of_part(part + 1); ++j) adjacency.start[j + 1] += offset[part];
+    std::copy(part_neighbours[part].begin(), part_neighbours[part].end(), adjacency.neighbour.begin() + offset[part]);
+  }
   return adjacency;
 }
 
