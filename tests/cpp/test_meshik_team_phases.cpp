@@ -46,7 +46,9 @@ TEST(TeamPhases, TriangleAdjacencyIsTheSameOnAnyTeam) {
   const meshik::TriangleAdjacency one =
       meshik::triangle_adjacency(grid.triangles.data(), grid.num_triangles(), grid.num_vertices());
   // A fin's diagonal joins three triangles: each of them has the other two as neighbours there.
-  EXPECT_EQ(one.start[1] - one.start[0], 3);  // cell (0, 0): the triangle below, the other half, its fin
+  // Cell (0, 0)'s first triangle: the other half and the fin across its diagonal, and the next
+  // cell's triangle across its edge (1, 0)-(1, 1).
+  EXPECT_EQ(one.start[1] - one.start[0], 3);
   for (int team : {2, 3, 5}) {
     const meshik::TriangleAdjacency many =
         meshik::triangle_adjacency(grid.triangles.data(), grid.num_triangles(), grid.num_vertices(), team);
