@@ -22,25 +22,6 @@ static_assert(kPolarLanes == kLanes && kGradientLanes == kLanes, "one polar batc
 
 namespace {
 
-// (M - I) U for a batch: m, 9 rows of kLanes (M row-major), basis U, 6 rows of kLanes (3 by 2
-// row-major, zero in padding lanes); writes 6 rows of kLanes to out (zero in padding lanes),
-// rounded to Stored. The unrolled r, c and q make the identity's entries constants, so the lanes
-// vectorize (GCC left them scalar; vectorized, the 1.08M features went from 1.59-1.95 to 1.29-1.56 s
-// on one thread).
-template <typename Stored>
-MESHIK_LANE_INLINE void minus_identity_on_plane(const double (&m)[9][kLanes], const double* basis, Stored* out) {
-#pragma GCC unroll 3
-  for (int r = 0; r < 3; ++r)
-#pragma GCC unroll 2
-    for (int c = 0; c < 2; ++c)
-      for (int l = 0; l < kLanes; ++l) {
-        double sum = 0.0;
-#pragma GCC unroll 3
-        for (int q = 0; q < 3; ++q) sum += (m[3 * r + q][l] - (q == r ? 1.0 : 0.0)) * basis[(2 * q + c) * kLanes + l];
-        out[(2 * r + c) * kLanes + l] = static_cast<Stored>(sum);
-      }
-}
-
 // Copies `rows` rows of kLanes values (double: rounded, or float) from each of two batches (second
 // may be null: zeros) into rows of 2 kLanes floats, the first batch's lanes first: one pair of
 // kCurvatureBatches.
@@ -98,12 +79,16 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
 #pragma omp for schedule(dynamic, batches_per_task)
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
-          double t[9][kLanes], rotation[9][kLanes], stretch[9][kLanes], log[3][kLanes];
-          deformation_gradients(frames, triangles, examples[i], first, count, t);
-          polar_and_log_batch(t, count, rotation, stretch, log);
-          const size_t block = static_cast<size_t>(batch) * k + i;
+          double rotation[9][kLanes], plane_stretch[6][kLanes], log[3][kLanes];
           const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
-          minus_identity_on_plane(stretch, basis, values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes);
+          triangle_polar_and_log_batch(frames, basis, triangles, examples[i], first, count, rotation, plane_stretch,
+                                       log);
+          const size_t block = static_cast<size_t>(batch) * k + i;
+          // (S - I) U, zero in the padding lanes.
+          Stored* stretch_block = values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes;
+          for (int r = 0; r < 6; ++r)
+            for (int l = 0; l < kLanes; ++l)
+              stretch_block[r * kLanes + l] = l < count ? static_cast<Stored>(plane_stretch[r][l]) : Stored(0);
           for (int r = 0; r < 3; ++r)
             for (int l = 0; l < count; ++l)
               values.nonlinear[9 * kLanes * block + r * kLanes + l] = static_cast<Stored>(log[r][l]);

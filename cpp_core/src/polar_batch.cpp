@@ -1,4 +1,5 @@
-// Batched Newton polar decomposition and rotation logarithm (polar_batch.h).
+// Closed-form polar decompositions and rotation logs of triangles' deformation gradients
+// (polar_batch.h).
 #include "polar_batch.h"
 
 #include <algorithm>
@@ -13,14 +14,7 @@ namespace meshik {
 namespace {
 
 constexpr int N = kPolarLanes;
-// Newton steps before a lane is handed to the SVD (condition numbers up to ~1e12 converge in 20).
-constexpr int kMaxSteps = 24;
-// A step smaller than this (Frobenius norm) leaves the iterate within ~1e-16 of the limit
-// (the error squares each step), so the iteration stops when every lane's step is below it.
-constexpr double kConvergedStep = 1e-9;
-// Scaling helps only far from convergence; near it, unscaled steps converge quadratically.
-constexpr double kScaleWhileStepAbove = 1e-2;
-// det(T) below this times |T|_F^3 (a near-degenerate or reflected matrix): SVD instead.
+// det(T) below this times |T|_F^3 (a nearly collapsed deformed triangle): SVD instead.
 constexpr double kMinRelativeDeterminant = 1e-10;
 
 // atan(t) for 0 <= t <= 1: reduced to |u| <= tan(pi/8) around 0 or pi/4, then fdlibm's odd
@@ -57,102 +51,67 @@ MESHIK_LANE_INLINE double atan2_upper(double s, double c) {
   return c < 0.0 ? kPi - angle : angle;
 }
 
-// One scaled Newton step on all lanes of x (9 rows of N lanes, row-major entries), in place;
-// step_squared[l]: in, the square of lane l's previous step length (it decides the scaling);
-// out, this one's. (Squares: no square root waits at the end of each step.)
-MESHIK_LANE_INLINE void newton_step_lanes(double (&x)[9][N], double (&step_squared)[N]) {
-  double c[9][N], det[N], half_g[N], half_inverse[N];
-  // Cofactors: X^{-T} = C / det X.
+// The lanes' closed-form factors (polar_batch.h) from the deformed edges e1, e2 and the rest
+// triangles' E^{-1} rows (g: kGradientEntries rows) and plane bases: x (R, 9 rows), plane_stretch
+// ((S - I) U, 6 rows) and margin: det T - kMinRelativeDeterminant |T|_F^3, not positive (or NaN)
+// where the SVD must serve.
+MESHIK_LANE_INLINE void closed_form_lanes(const double (&e1)[3][N], const double (&e2)[3][N],
+                                          const double (&g)[kGradientEntries][N], const double* basis,
+                                          double (&x)[9][N], double (&plane_stretch)[6][N], double (&margin)[N]) {
   for (int l = 0; l < N; ++l) {
-    c[0][l] = x[4][l] * x[8][l] - x[5][l] * x[7][l];
-    c[1][l] = x[5][l] * x[6][l] - x[3][l] * x[8][l];
-    c[2][l] = x[3][l] * x[7][l] - x[4][l] * x[6][l];
-    c[3][l] = x[2][l] * x[7][l] - x[1][l] * x[8][l];
-    c[4][l] = x[0][l] * x[8][l] - x[2][l] * x[6][l];
-    c[5][l] = x[1][l] * x[6][l] - x[0][l] * x[7][l];
-    c[6][l] = x[1][l] * x[5][l] - x[2][l] * x[4][l];
-    c[7][l] = x[2][l] * x[3][l] - x[0][l] * x[5][l];
-    c[8][l] = x[0][l] * x[4][l] - x[1][l] * x[3][l];
-    det[l] = x[0][l] * c[0][l] + x[1][l] * c[1][l] + x[2][l] * c[2][l];
-  }
-  double norm_x[N] = {}, norm_c[N] = {};
-  for (int e = 0; e < 9; ++e)
-    for (int l = 0; l < N; ++l) {
-      norm_x[l] += x[e][l] * x[e][l];
-      norm_c[l] += c[e][l] * c[e][l];
+    const double u1[3] = {basis[0 * N + l], basis[2 * N + l], basis[4 * N + l]};
+    const double u2[3] = {basis[1 * N + l], basis[3 * N + l], basis[5 * N + l]};
+    const double n[3] = {u1[1] * u2[2] - u1[2] * u2[1], u1[2] * u2[0] - u1[0] * u2[2], u1[0] * u2[1] - u1[1] * u2[0]};
+    // The deformed frame: v1 along e1, m along e1 x e2, v2 = m x v1.
+    const double c0 = e1[1][l] * e2[2][l] - e1[2][l] * e2[1][l];
+    const double c1 = e1[2][l] * e2[0][l] - e1[0][l] * e2[2][l];
+    const double c2 = e1[0][l] * e2[1][l] - e1[1][l] * e2[0][l];
+    const double twice_area = std::sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+    const double length = std::sqrt(e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l]);
+    const double inverse_length = 1.0 / length, inverse_area = 1.0 / twice_area;
+    const double v1[3] = {e1[0][l] * inverse_length, e1[1][l] * inverse_length, e1[2][l] * inverse_length};
+    const double m[3] = {c0 * inverse_area, c1 * inverse_area, c2 * inverse_area};
+    const double v2[3] = {m[1] * v1[2] - m[2] * v1[1], m[2] * v1[0] - m[0] * v1[2], m[0] * v1[1] - m[1] * v1[0]};
+    // A = E~ E^{-1} = [a b; 0 d], E~ = [length q; 0 s], E^{-1} = [g0 g1; 0 g2].
+    const double q = e2[0][l] * v1[0] + e2[1][l] * v1[1] + e2[2][l] * v1[2];
+    const double s = e2[0][l] * v2[0] + e2[1][l] * v2[1] + e2[2][l] * v2[2];
+    const double a = length * g[0][l], b = length * g[1][l] + q * g[2][l], d = s * g[2][l];
+    // R2 = [cosine -sine; sine cosine] and P = R2^T A (symmetric).
+    const double trace = a + d;
+    const double inverse_r = 1.0 / std::sqrt(trace * trace + b * b);
+    const double cosine = trace * inverse_r, sine = -b * inverse_r;
+    const double p11 = a * trace * inverse_r, p12 = a * b * inverse_r, p22 = (b * b + trace * d) * inverse_r;
+    // R = [w1 w2] U^T + m n^T with [w1 w2] = [v1 v2] R2; (S - I) U = U (P - I).
+    for (int r = 0; r < 3; ++r) {
+      const double w1 = cosine * v1[r] + sine * v2[r], w2 = cosine * v2[r] - sine * v1[r];
+      for (int c = 0; c < 3; ++c) x[3 * r + c][l] = w1 * u1[c] + w2 * u2[c] + m[r] * n[c];
+      plane_stretch[2 * r][l] = u1[r] * (p11 - 1.0) + u2[r] * p12;
+      plane_stretch[2 * r + 1][l] = u1[r] * p12 + u2[r] * (p22 - 1.0);
     }
-  // (omp simd: else the compiler unrolls this loop over lanes and leaves its divisions and
-  // square roots scalar.)
-#pragma omp simd
-  for (int l = 0; l < N; ++l) {
-    // g = sqrt(|X^{-1}|_F / |X|_F) = (|C|_F / (|det| |X|_F))^(1/2), only while far from converged.
-    const double scaled = std::sqrt(std::sqrt(norm_c[l] / norm_x[l]) / std::abs(det[l]));
-    const double g = step_squared[l] > kScaleWhileStepAbove * kScaleWhileStepAbove ? scaled : 1.0;
-    half_g[l] = 0.5 * g;
-    half_inverse[l] = 0.5 / (g * det[l]);
+    // det T = a d sigma and |T|_F^2 = a^2 + b^2 + d^2 + sigma^2, with sigma^2 the ratio of the
+    // areas (the rest triangle's twice area is 1 / (g0 g2)).
+    const double sigma_squared = twice_area * g[0][l] * g[2][l];
+    const double norm_squared = a * a + b * b + d * d + sigma_squared;
+    margin[l] = a * d * std::sqrt(sigma_squared) - kMinRelativeDeterminant * norm_squared * std::sqrt(norm_squared);
   }
-  double change[N] = {};
-  for (int e = 0; e < 9; ++e)
-    for (int l = 0; l < N; ++l) {
-      const double next = half_g[l] * x[e][l] + half_inverse[l] * c[e][l];
-      change[l] += (next - x[e][l]) * (next - x[e][l]);
-      x[e][l] = next;
-    }
-  for (int l = 0; l < N; ++l) step_squared[l] = change[l];
-}
-
-// Newton iteration on x (9 rows of N lanes), in place, until every lane's step is below
-// kConvergedStep or kMaxSteps. Returns in converged[l] whether lane l got there.
-MESHIK_LANE_INLINE void newton_polar_lanes(double (&x)[9][N], bool (&converged)[N]) {
-  constexpr double kConvergedSquared = kConvergedStep * kConvergedStep;
-  double step_squared[N];
-  for (int l = 0; l < N; ++l) step_squared[l] = 1.0;
-  for (int iteration = 0; iteration < kMaxSteps; ++iteration) {
-    newton_step_lanes(x, step_squared);
-    // Lanes still moving (a NaN step counts: !(NaN < bound)).
-    double pending = 0.0;
-#pragma omp simd reduction(+ : pending)
-    for (int l = 0; l < N; ++l) pending += step_squared[l] < kConvergedSquared ? 0.0 : 1.0;
-    if (pending == 0.0) break;
-  }
-  for (int l = 0; l < N; ++l) converged[l] = step_squared[l] < kConvergedSquared;
 }
 
 }  // namespace
 
 MESHIK_SIMD_CLONES
-void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&rotation)[9][kPolarLanes],
-                         double (&stretch)[9][kPolarLanes], double (&log)[3][kPolarLanes]) {
-  // Lanes past count and lanes for the SVD iterate on the identity (converged at once). The
-  // work goes on local arrays, which the compiler knows alias nothing (SIMD without checks).
-  double m[9][N], x[9][N], sym[9][N], phi[3][N];
-  std::memcpy(m, t, sizeof m);
-  // det T - kMinRelativeDeterminant |T|_F^3 per lane: positive for the lanes Newton serves.
-  // (Lane arrays of doubles, not bools: a bool among doubles keeps a loop from SIMD.)
-  double margin[N], norm_squared[N] = {};
-  for (int e = 0; e < 9; ++e)
-    for (int l = 0; l < N; ++l) norm_squared[l] += m[e][l] * m[e][l];
+void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* basis, const int* triangles,
+                                  const double* vertices, int first, int count, double (&rotation)[9][kPolarLanes],
+                                  double (&plane_stretch)[6][kPolarLanes], double (&log)[3][kPolarLanes]) {
+  // The work goes on local arrays, which the compiler knows alias nothing (SIMD without checks).
+  double e1[3][N], e2[3][N], g[kGradientEntries][N], x[9][N], stretch[6][N], margin[N], phi[3][N];
+  edge_lanes(vertices, triangles, first, count, e1, e2);
   for (int l = 0; l < N; ++l) {
-    const double det = m[0][l] * (m[4][l] * m[8][l] - m[5][l] * m[7][l]) +
-                       m[1][l] * (m[5][l] * m[6][l] - m[3][l] * m[8][l]) +
-                       m[2][l] * (m[3][l] * m[7][l] - m[4][l] * m[6][l]);
-    const double norm = std::sqrt(norm_squared[l]);
-    margin[l] = l < count ? det - kMinRelativeDeterminant * norm * norm * norm : -1.0;
+    const size_t j = static_cast<size_t>(first + (l < count ? l : count - 1));
+    for (int e = 0; e < kGradientEntries; ++e) g[e][l] = frames.gradient[kGradientEntries * j + e];
   }
-  for (int e = 0; e < 9; ++e)
-    for (int l = 0; l < N; ++l) x[e][l] = margin[l] > 0.0 ? m[e][l] : (e % 4 == 0 ? 1.0 : 0.0);
-  bool converged[N];
-  newton_polar_lanes(x, converged);
+  closed_form_lanes(e1, e2, g, basis, x, stretch, margin);
 
-  // S = sym(R^T T), and the logs for lanes whose angle is below 2 pi / 3 (v = sin(theta) axis,
-  // see so3_log).
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      for (int l = 0; l < N; ++l) {
-        const double rc = x[r][l] * m[c][l] + x[3 + r][l] * m[3 + c][l] + x[6 + r][l] * m[6 + c][l];
-        const double cr = x[c][l] * m[r][l] + x[3 + c][l] * m[3 + r][l] + x[6 + c][l] * m[6 + r][l];
-        sym[3 * r + c][l] = 0.5 * (rc + cr);
-      }
+  // The logs for lanes whose angle is below 2 pi / 3 (v = sin(theta) axis, see so3_log).
   double cosine[N];
   for (int l = 0; l < N; ++l) {
     const double v0 = 0.5 * (x[7][l] - x[5][l]), v1 = 0.5 * (x[2][l] - x[6][l]), v2 = 0.5 * (x[3][l] - x[1][l]);
@@ -170,27 +129,35 @@ void polar_and_log_batch(const double (&t)[9][kPolarLanes], int count, double (&
     cosine[l] = cos_theta;  // (a bool written here would keep the loop from SIMD)
   }
   std::memcpy(rotation, x, sizeof x);
-  std::memcpy(stretch, sym, sizeof sym);
+  std::memcpy(plane_stretch, stretch, sizeof stretch);
   std::memcpy(log, phi, sizeof phi);
 
-  // The rare lanes the iteration does not serve: the SVD, and so3_log near a half turn.
+  // The rare lanes the closed form does not serve: the SVD, and so3_log near a half turn.
+  bool gradients_read = false;
+  double t[9][N];
   for (int l = 0; l < count; ++l) {
-    const bool svd = !(margin[l] > 0.0) || !converged[l];
+    const bool svd = !(margin[l] > 0.0);
     if (!svd && cosine[l] > -0.5) continue;
     Eigen::Matrix3d r;
     for (int e = 0; e < 9; ++e) r(e / 3, e % 3) = rotation[e][l];
     if (svd) {
+      if (!gradients_read) deformation_gradients(frames, triangles, vertices, first, count, t);
+      gradients_read = true;
       Eigen::Matrix3d matrix;
       for (int e = 0; e < 9; ++e) matrix(e / 3, e % 3) = t[e][l];
       const PolarDecomposition polar = polar_decomposition(matrix);
       r = polar.rotation;
-      for (int e = 0; e < 9; ++e) {
-        rotation[e][l] = polar.rotation(e / 3, e % 3);
-        stretch[e][l] = polar.stretch(e / 3, e % 3);
-      }
+      for (int e = 0; e < 9; ++e) rotation[e][l] = polar.rotation(e / 3, e % 3);
+      for (int row = 0; row < 3; ++row)
+        for (int c = 0; c < 2; ++c) {
+          double sum = 0.0;
+          for (int k = 0; k < 3; ++k)
+            sum += (polar.stretch(row, k) - (k == row ? 1.0 : 0.0)) * basis[(2 * k + c) * N + l];
+          plane_stretch[2 * row + c][l] = sum;
+        }
     }
-    const Eigen::Vector3d phi = so3_log(r);
-    for (int d = 0; d < 3; ++d) log[d][l] = phi(d);
+    const Eigen::Vector3d principal = so3_log(r);
+    for (int d = 0; d < 3; ++d) log[d][l] = principal(d);
   }
 }
 

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "page_arrays.h"
+#include "simd_clones.h"
 
 namespace meshik {
 
@@ -63,6 +64,23 @@ Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* tr
 
 // Triangles a deformation_gradients call takes at once (their arithmetic is SIMD).
 constexpr int kGradientLanes = 8;
+
+// The edges e1 = v2 - v1 and e2 = v3 - v1 of the count (1 <= count <= kGradientLanes) triangles
+// first, first + 1, ... of the mesh with positions `vertices` (#V by 3), one lane each (lanes
+// past count repeat the last triangle).
+MESHIK_LANE_INLINE void edge_lanes(const double* vertices, const int* triangles, int first, int count,
+                                   double (&e1)[3][kGradientLanes], double (&e2)[3][kGradientLanes]) {
+  for (int l = 0; l < kGradientLanes; ++l) {
+    const int j = first + (l < count ? l : count - 1);
+    const double* a = vertices + 3 * static_cast<size_t>(triangles[3 * j]);
+    const double* b = vertices + 3 * static_cast<size_t>(triangles[3 * j + 1]);
+    const double* c = vertices + 3 * static_cast<size_t>(triangles[3 * j + 2]);
+    for (int r = 0; r < 3; ++r) {
+      e1[r][l] = b[r] - a[r];
+      e2[r][l] = c[r] - a[r];
+    }
+  }
+}
 
 // deformation_gradient for the count (1 <= count <= kGradientLanes) triangles first, first + 1,
 // ...: writes entry (r, c) of lane l's gradient to t[3 r + c][l] (lanes past count repeat the

@@ -2,6 +2,7 @@
 // choice of rotation-log branches.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <queue>
@@ -16,6 +17,7 @@
 #include "polar_batch.h"
 #include "rotation_branches.h"
 #include "so3.h"
+#include "triangle_frames.h"
 
 namespace {
 
@@ -402,45 +404,66 @@ TEST(RotationBranches, TriangleComponentsAreNumberedByTheirLeastTriangle) {
   EXPECT_EQ(components.component_of, std::vector<int>({0, 0, 0, 0, 1, 1, 0}));
 }
 
-TEST(So3, BatchedPolarDecompositionMatchesTheSvdOne) {
+// The closed-form batch against the SVD polar decomposition of each triangle's deformation
+// gradient: triangles of their own (no shared vertices) deformed by a rotation (every angle of
+// test_rotation_vectors) times a random symmetric positive definite stretch, by a rotation alone,
+// a reflection (the triangle mirrored), a stretch of condition 1e6 along the first edge, and a
+// collapse onto a line (T singular: the SVD lanes).
+TEST(So3, TrianglePolarDecompositionMatchesTheSvdOne) {
   std::mt19937 random(3);
   std::normal_distribution<double> normal;
-  std::vector<Eigen::Matrix3d> matrices;
+  std::vector<double> rest, deformed;
+  std::vector<int> triangles;
+  const auto add = [&](const Eigen::Matrix3d& map) {
+    const int first = static_cast<int>(rest.size() / 3);
+    for (int corner = 0; corner < 3; ++corner) {
+      const Eigen::Vector3d v(normal(random), normal(random), normal(random));
+      const Eigen::Vector3d w = map * v + Eigen::Vector3d(normal(random), normal(random), normal(random));
+      rest.insert(rest.end(), {v.x(), v.y(), v.z()});
+      deformed.insert(deformed.end(), {w.x(), w.y(), w.z()});
+      triangles.push_back(first + corner);
+    }
+  };
   for (const Eigen::Vector3d& phi : test_rotation_vectors()) {
     Eigen::Matrix3d stretch;
     for (int e = 0; e < 9; ++e) stretch(e) = 0.3 * normal(random);
-    stretch = Eigen::Matrix3d::Identity() + stretch * stretch.transpose();  // symmetric positive definite
-    matrices.push_back(so3_exp(phi) * stretch);
-    matrices.push_back(so3_exp(phi));
+    add(so3_exp(phi) * (Eigen::Matrix3d::Identity() + stretch * stretch.transpose()));
+    add(so3_exp(phi));
   }
-  matrices.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal());   // a reflection: the SVD path
-  matrices.push_back(Eigen::Vector3d(2, 0.5, 0).asDiagonal());  // rank 2: the SVD path
-  matrices.push_back(Eigen::Vector3d(1e6, 1, 1e-6).asDiagonal());  // condition 1e12
-  for (size_t first = 0; first < matrices.size(); first += meshik::kPolarLanes) {
-    const int count = static_cast<int>(std::min<size_t>(meshik::kPolarLanes, matrices.size() - first));
-    constexpr int N = meshik::kPolarLanes;
-    double lanes[9][N] = {}, rotation_lanes[9][N], stretch_lanes[9][N], log_lanes[3][N];
-    for (int l = 0; l < count; ++l)
-      for (int e = 0; e < 9; ++e) lanes[e][l] = matrices[first + l](e / 3, e % 3);
-    meshik::polar_and_log_batch(lanes, count, rotation_lanes, stretch_lanes, log_lanes);
-    Eigen::Matrix3d rotation[N], stretch[N];
-    Eigen::Vector3d log[N];
+  add(Eigen::Vector3d(1, 1, -1).asDiagonal());
+  add(Eigen::Vector3d(1e3, 1e-3, 1).asDiagonal());
+  const int collapsed = static_cast<int>(triangles.size() / 3);
+  add(Eigen::Matrix3d::Identity());
+  for (int corner = 0; corner < 3; ++corner)  // onto the line through the origin along (1, 2, 3)
+    for (int d = 0; d < 3; ++d) deformed[3 * (3 * collapsed + corner) + d] = (corner + 1.0) * (d + 1.0);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleFrames frames = meshik::compute_triangle_frames(rest.data(), triangles.data(), m);
+  constexpr int N = meshik::kPolarLanes;
+  for (int first = 0; first < m; first += N) {
+    const int count = std::min(N, m - first);
+    double rotation_lanes[9][N], stretch_lanes[6][N], log_lanes[3][N];
+    meshik::triangle_polar_and_log_batch(frames, frames.plane_basis.data() + 6 * static_cast<size_t>(first),
+                                         triangles.data(), deformed.data(), first, count, rotation_lanes,
+                                         stretch_lanes, log_lanes);
     for (int l = 0; l < count; ++l) {
-      for (int e = 0; e < 9; ++e) {
-        rotation[l](e / 3, e % 3) = rotation_lanes[e][l];
-        stretch[l](e / 3, e % 3) = stretch_lanes[e][l];
-      }
-      log[l] = Eigen::Vector3d(log_lanes[0][l], log_lanes[1][l], log_lanes[2][l]);
-    }
-    for (int l = 0; l < count; ++l) {
-      const Eigen::Matrix3d& t = matrices[first + l];
+      const int j = first + l;
+      Eigen::Matrix3d rotation;
+      Eigen::Matrix<double, 3, 2> plane_stretch;
+      for (int e = 0; e < 9; ++e) rotation(e / 3, e % 3) = rotation_lanes[e][l];
+      for (int e = 0; e < 6; ++e) plane_stretch(e / 2, e % 2) = stretch_lanes[e][l];
+      const Eigen::Vector3d log(log_lanes[0][l], log_lanes[1][l], log_lanes[2][l]);
+      const Eigen::Matrix3d t = meshik::deformation_gradient(frames, triangles.data(), deformed.data(), j);
+      const Eigen::Matrix<double, 3, 2> basis = meshik::plane_basis_of(frames, j);
       const meshik::PolarDecomposition svd = polar_decomposition(t);
-      EXPECT_LT((rotation[l] - svd.rotation).norm(), 1e-12) << t;
-      EXPECT_LT((stretch[l] - svd.stretch).norm(), 1e-12 * std::max(1.0, t.norm())) << t;
-      EXPECT_LT((log[l] - so3_log(svd.rotation)).norm(), 1e-12) << t;
-      EXPECT_LT((rotation[l] * stretch[l] - t).norm(), 1e-13 * std::max(1.0, t.norm()));
+      const double scale = std::max(1.0, t.norm());
+      EXPECT_LT((rotation - svd.rotation).norm(), 1e-12) << "triangle " << j << "\n" << t;
+      EXPECT_LT((plane_stretch - (svd.stretch - Eigen::Matrix3d::Identity()) * basis).norm(), 1e-12 * scale)
+          << "triangle " << j;
+      EXPECT_LT((log - so3_log(svd.rotation)).norm(), 1e-12) << "triangle " << j;
+      EXPECT_LT((rotation * (basis + plane_stretch) - t * basis).norm(), 1e-13 * scale) << "triangle " << j;
     }
   }
+  EXPECT_EQ(collapsed, m - 1);
 }
 
 }  // namespace
