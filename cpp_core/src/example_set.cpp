@@ -171,19 +171,21 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     rows_ready.set_value();
   }
   clock.lap("system pattern");
-  // The team less the core the analysis thread holds while it runs, for the adjacency and the normal
-  // matrix (both the same for any team): short passes that time-sharing a core would only slow.
+  // The team less the core the analysis thread holds while it runs, for the frames, the adjacency,
+  // the features and the normal matrix (each the same for any team): the analysis is the longest
+  // task here, and sharing its core with the team's passes only delays it.
   const auto team_beside_analysis = [&analysis, team] {
     const bool running =
         analysis.valid() && analysis.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
     return running ? std::max(1, team - 1) : team;
   };
-  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team);
+  impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team_beside_analysis());
   TriangleAdjacency adjacency =
       triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices, team_beside_analysis());
   clock.lap("topology and frames");
   impl.features =
-      compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision);
+      compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision,
+                               team_beside_analysis);
   // The features took the frames' plane bases and freed their inverse frames: only the in-plane
   // gradients are read after this, and the adjacency nowhere.
   adjacency = TriangleAdjacency();

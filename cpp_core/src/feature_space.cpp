@@ -42,7 +42,8 @@ static_assert(kCurvatureBatches == 2, "float_pair packs two batches");
 template <typename Stored>
 void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& adjacency, const int* triangles,
                          const std::vector<const double*>& examples, const ProgressCallback& progress,
-                         bool consistent_branches, int team, ExampleFeatures& features) {
+                         bool consistent_branches, int team, const std::function<int()>& threads_free,
+                         ExampleFeatures& features) {
   const int m = features.num_triangles;
   const int k = features.num_examples;
   FeatureValues<Stored>& values = values_of<Stored>(features);
@@ -65,6 +66,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
   assign_by_team(distances, edges * group_size, 0.0, team);
   const TriangleComponents components = consistent_branches ? triangle_components(adjacency) : TriangleComponents();
   const int batches_per_task = dynamic_chunk(features.num_batches, team);
+  // The threads of the team a pass starting now may use.
+  const auto threads_now = [&threads_free, team] { return threads_free ? threads_free() : team; };
   for (int group = 0, members = k % group_size == 0 ? group_size : k % group_size; group < k;
        group += members, members = group_size) {
     for (int g = 0; g < members; ++g) {
@@ -74,7 +77,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
       // batches are handed out in chunks as threads come free: the ExampleSet's analysis thread
       // shares the cores, and equal static shares would leave a core idle while the thread that
       // shares its core with it finishes.
-#pragma omp parallel num_threads(team)
+#pragma omp parallel num_threads(threads_now())
       {
 #pragma omp for schedule(dynamic, batches_per_task)
         for (int batch = 0; batch < features.num_batches; ++batch) {
@@ -105,7 +108,7 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
         }
       }
     }
-#pragma omp parallel for schedule(static, 1) num_threads(std::min(team, members))
+#pragma omp parallel for schedule(static, 1) num_threads(std::min(threads_now(), members))
     for (int g = 0; g < members; ++g) {
       if (!consistent_branches) continue;
       // The principal logs are in place: write those given another branch.
@@ -128,7 +131,8 @@ ExampleFeatures compute_example_features(TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress,
-                                         bool consistent_branches, int threads, FeaturePrecision precision) {
+                                         bool consistent_branches, int threads, FeaturePrecision precision,
+                                         const std::function<int()>& threads_free) {
   const int m = frames.num_triangles;
   const int k = static_cast<int>(examples.size());
   ExampleFeatures features;
@@ -145,9 +149,11 @@ ExampleFeatures compute_example_features(TriangleFrames& frames,
   features.plane_basis = std::move(frames.plane_basis);  // the same layout (kGradientLanes == kLanes)
 
   if (precision == FeaturePrecision::kSingle)
-    fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
+    fill_example_blocks<float>(frames, adjacency, triangles, examples, progress, consistent_branches, team,
+                               threads_free, features);
   else
-    fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team, features);
+    fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team,
+                                threads_free, features);
   frames.frame_inverse = PageArray<double>();  // move-assigned: the memory is freed
   return features;
 }

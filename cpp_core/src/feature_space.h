@@ -14,6 +14,7 @@
 // so that one batch's arithmetic is SIMD; the last batch is padded with zero features.
 #pragma once
 
+#include <functional>
 #include <type_traits>
 #include <vector>
 
@@ -81,12 +82,15 @@ decltype(auto) visit_feature_values(Features& features, Visit&& visit) {
 // (for comparison only). precision: how the values are stored (FeaturePrecision).
 // progress(fraction) is called once per example, on the calling thread. threads: 0 = all cores,
 // n = n threads over blocks of triangles (see thread_count); the result is identical for any count.
+// threads_free (when set) is asked before each parallel pass how many of those threads it may use
+// (1 to the team; the caller's other work may hold the rest of the cores).
 ExampleFeatures compute_example_features(TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
                                          const ProgressCallback& progress = {},
                                          bool consistent_branches = true, int threads = 0,
-                                         FeaturePrecision precision = FeaturePrecision::kSingle);
+                                         FeaturePrecision precision = FeaturePrecision::kSingle,
+                                         const std::function<int()>& threads_free = {});
 
 // Number of doubles blend_batch writes: the target and one derivative per example, 6 rows each,
 // then room for the batch's features widened to double (9 rows per example).
