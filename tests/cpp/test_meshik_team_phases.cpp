@@ -64,7 +64,8 @@ TEST(TeamPhases, EliminatedNormalMatrixIsTheSameBitsOnAnyTeam) {
   std::vector<int> row_of_vertex(n);
   for (int v = 0; v < n; ++v) row_of_vertex[v] = v;
   const meshik::CscMatrix pattern = meshik::eliminated_lower_pattern(grid.triangles.data(), m, row_of_vertex, n);
-  const std::vector<double> one = meshik::eliminated_lower_values(frames, grid.triangles.data(), row_of_vertex, pattern);
+  const std::vector<double> one =
+      meshik::eliminated_lower_values(frames, grid.triangles.data(), row_of_vertex, pattern);
   ASSERT_EQ(one.size(), pattern.row_index.size());
   // A diagonal entry sums the Gram terms of every triangle around its vertex: positive.
   for (int c = 0; c < n; ++c) EXPECT_GT(one[pattern.col_start[c]], 0.0) << "vertex " << c;
