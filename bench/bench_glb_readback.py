@@ -5,8 +5,10 @@ Every morph target's accessor of a meshopt .glb lies in one shared, compressed b
 export checks its .glb by reading it back (meshik.export.output_errors), so a per-accessor decode made the
 export quadratic in the frames (1,000 frames 2 s, 4,000 14 s, 20,000 not done in 120 s). Prints
 one row per frame count: the .glb's size, the read-back with views decoded once and per accessor,
-and their ratio. Usage: python bench/bench_glb_readback.py [FRAMES ...] (default 500 1000 2000).
+and their ratio. Usage: python bench/bench_glb_readback.py [FRAMES ...] (default 500 1000 2000);
+`make bench` also passes --samples and --data, which it does not need.
 """
+import argparse
 import json
 import shutil
 import sys
@@ -49,7 +51,11 @@ def read_targets(data: bytes, decode_once: bool) -> float:
 
 def main(argv) -> int:
     """Print the table for the frame counts in argv (default 500 1000 2000); 0."""
-    counts = [int(a) for a in argv] or [500, 1000, 2000]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("frames", type=int, nargs="*", help="frame counts (default 500 1000 2000)")
+    parser.add_argument("--samples", help="sample_meshes/ (unused here)")
+    parser.add_argument("--data", help="../shared/data (unused here)")
+    counts = parser.parse_args(argv).frames or [500, 1000, 2000]
     print(f"{'frames':>7} {'glb bytes':>10} {'decoded once s':>15} {'per accessor s':>15} {'ratio':>7}")
     with tempfile.TemporaryDirectory() as scratch:
         for frames in counts:
