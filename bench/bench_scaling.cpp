@@ -68,8 +68,8 @@ void example_set_bytes(const meshik::ExampleSet::Impl& s, double& all, double& p
       bytes_of(f.plane_basis) + bytes_of(s.vertex_of_internal) + bytes_of(s.internal_of_vertex) +
       bytes_of(s.triangle_of_internal) + bytes_of(s.rest) + bytes_of(s.triangles) +
       bytes_of(s.components.component_of_vertex) + bytes_of(s.frames.gradient) + bytes_of(s.frames.plane_basis) +
-      bytes_of(s.frames.frame_inverse) + bytes_of(s.system_row_of_vertex) + bytes_of(pattern.col_start) +
-      bytes_of(pattern.row_index) + bytes_of(s.system_values));
+      bytes_of(s.system_row_of_vertex) + bytes_of(pattern.col_start) + bytes_of(pattern.row_index) +
+      bytes_of(s.system_values));
 }
 
 // What one child measures (sent to the parent through a pipe as raw bytes).

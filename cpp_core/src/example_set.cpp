@@ -186,8 +186,8 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.features =
       compute_example_features(impl.frames, adjacency, triangles, example_pointers, progress, true, threads, precision,
                                team_beside_analysis);
-  // The features took the frames' plane bases and freed their inverse frames: only the in-plane
-  // gradients are read after this, and the adjacency nowhere.
+  // The features took the frames' plane bases: only the in-plane gradients are read after this,
+  // and the adjacency nowhere.
   adjacency = TriangleAdjacency();
   clock.lap("features");
   rows.get();  // the components and the system's rows and pattern

@@ -83,9 +83,8 @@ void fill_example_blocks(const TriangleFrames& frames, const TriangleAdjacency& 
         for (int batch = 0; batch < features.num_batches; ++batch) {
           const int first = batch * kLanes, count = std::min(m - first, kLanes);
           double rotation[9][kLanes], plane_stretch[6][kLanes], log[3][kLanes];
-          const double* basis = features.plane_basis.data() + 6 * kLanes * static_cast<size_t>(batch);
-          triangle_polar_and_log_batch(frames, basis, triangles, examples[i], first, count, rotation, plane_stretch,
-                                       log);
+          triangle_polar_and_log_batch(frames, features.plane_basis.data(), triangles, examples[i], first, count,
+                                       rotation, plane_stretch, log);
           const size_t block = static_cast<size_t>(batch) * k + i;
           // (S - I) U, zero in the padding lanes.
           Stored* stretch_block = values.nonlinear.data() + 9 * kLanes * block + 3 * kLanes;
@@ -154,7 +153,6 @@ ExampleFeatures compute_example_features(TriangleFrames& frames,
   else
     fill_example_blocks<double>(frames, adjacency, triangles, examples, progress, consistent_branches, team,
                                 threads_free, features);
-  frames.frame_inverse = PageArray<double>();  // move-assigned: the memory is freed
   return features;
 }
 

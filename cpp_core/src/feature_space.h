@@ -77,7 +77,7 @@ decltype(auto) visit_feature_values(Features& features, Visit&& visit) {
 }
 
 // frames / adjacency / triangles (#F by 3): the rest mesh's; the features take over the frames'
-// plane basis and free their inverse frames (the in-plane gradients are left). examples: #E
+// plane basis (the in-plane gradients are left). examples: #E
 // pointers to #V by 3 positions. consistent_branches = false keeps the principal rotation logs
 // (for comparison only). precision: how the values are stored (FeaturePrecision).
 // progress(fraction) is called once per example, on the calling thread. threads: 0 = all cores,

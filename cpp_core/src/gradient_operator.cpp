@@ -10,7 +10,8 @@ std::vector<MatrixEntry> kept_gradient_operator(const TriangleFrames& frames, co
   std::vector<MatrixEntry> entries;
   entries.reserve(12 * static_cast<size_t>(frames.num_triangles));
   for (int j = 0; j < frames.num_triangles; ++j) {
-    const double* inverse = frames.frame_inverse.data() + 9 * static_cast<size_t>(j);
+    double inverse[9];
+    rest_frame_inverse(frames.gradient.data(), frames.plane_basis.data(), j, inverse);
     const int* t = triangles + 3 * j;
     // T[c][r] = sum_s (x_{s+1} - x_0)[c] V^{-1}[s][r], with x_3 the fourth vertex (column #V + j).
     const int columns[4] = {t[0], t[1], t[2], num_vertices + j};

@@ -4,7 +4,7 @@
 // virtual machine that reports its free pages to the host. At 1.08M triangles on 2 threads an
 // ExampleSet touched 0.75 GB fresh and the Solver built next 0.47 GB. glibc maps arrays from
 // 32 MiB (its largest mmap threshold) fresh and unmaps them when they are freed, so the
-// ExampleSet's large temporaries (the inverse frames, the rotations, the edge distances) went back
+// ExampleSet's large temporaries (the rotations, the logs, the edge distances) went back
 // to the system just before the Solver asked for as much again (the factor's values), and a
 // Solver for new handles faulted in afresh what the old one had just freed. Through this pool a
 // freed array's pages, still resident, are moved instead (Linux's mremap moves their page-table

@@ -99,11 +99,12 @@ MESHIK_LANE_INLINE void closed_form_lanes(const double (&e1)[3][N], const double
 }  // namespace
 
 MESHIK_SIMD_CLONES
-void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* basis, const int* triangles,
+void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* plane_basis, const int* triangles,
                                   const double* vertices, int first, int count, double (&rotation)[9][kPolarLanes],
                                   double (&plane_stretch)[6][kPolarLanes], double (&log)[3][kPolarLanes]) {
   // The work goes on local arrays, which the compiler knows alias nothing (SIMD without checks).
   double e1[3][N], e2[3][N], g[kGradientEntries][N], x[9][N], stretch[6][N], margin[N], phi[3][N];
+  const double* basis = plane_basis + 6 * N * static_cast<size_t>(first / N);
   edge_lanes(vertices, triangles, first, count, e1, e2);
   for (int l = 0; l < N; ++l) {
     const size_t j = static_cast<size_t>(first + (l < count ? l : count - 1));
@@ -141,7 +142,8 @@ void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* ba
     Eigen::Matrix3d r;
     for (int e = 0; e < 9; ++e) r(e / 3, e % 3) = rotation[e][l];
     if (svd) {
-      if (!gradients_read) deformation_gradients(frames, triangles, vertices, first, count, t);
+      if (!gradients_read)
+        deformation_gradients(frames.gradient.data(), plane_basis, triangles, vertices, first, count, t);
       gradients_read = true;
       Eigen::Matrix3d matrix;
       for (int e = 0; e < 9; ++e) matrix(e / 3, e % 3) = t[e][l];

@@ -21,14 +21,14 @@ namespace meshik {
 // Triangles a batch holds (one AVX-512 register of doubles per entry).
 constexpr int kPolarLanes = kGradientLanes;
 
-// frames: the rest triangles' (gradient read, and frame_inverse for singular lanes); basis: the
-// batch's plane bases (6 rows of kPolarLanes, TriangleFrames::plane_basis's layout); triangles
+// frames: the rest triangles' (their gradient read; their plane bases, which the features take
+// over, are plane_basis: TriangleFrames::plane_basis's layout, all triangles); triangles
 // (#F by 3) and vertices (#V by 3): the deformed mesh; count (1 <= count <= kPolarLanes) triangles
 // from first (a multiple of kPolarLanes). Writes for each, in lanes alike, the rotation R of its
 // deformation gradient's proper polar decomposition T = R S (9 rows, R row-major, det +1),
 // (S - I) U (6 rows, 3 by 2 row-major) and so3_log(R) (3 rows); lanes past count hold no result.
 // Each result depends only on its triangle (no thread or call order enters).
-void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* basis, const int* triangles,
+void triangle_polar_and_log_batch(const TriangleFrames& frames, const double* plane_basis, const int* triangles,
                                   const double* vertices, int first, int count, double (&rotation)[9][kPolarLanes],
                                   double (&plane_stretch)[6][kPolarLanes], double (&log)[3][kPolarLanes]);
 

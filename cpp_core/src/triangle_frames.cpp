@@ -27,25 +27,14 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
   constexpr int N = kGradientLanes;
   double e1[3][N], e2[3][N];
   edge_lanes(rest, triangles, first, count, e1, e2);
-  double inverse[9][N], basis[6][N], gradient[kGradientEntries][N];
+  double basis[6][N], gradient[kGradientEntries][N];
   for (int l = 0; l < N; ++l) {
-    // n = e1 x e2; the fourth vertex's offset f = n / sqrt|n| (fourth_vertex_offset).
+    // n = e1 x e2.
     const double n0 = e1[1][l] * e2[2][l] - e1[2][l] * e2[1][l];
     const double n1 = e1[2][l] * e2[0][l] - e1[0][l] * e2[2][l];
     const double n2 = e1[0][l] * e2[1][l] - e1[1][l] * e2[0][l];
     const double length = std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
     const bool flat = !(length > 0.0);
-    const double root = flat ? 1.0 : std::sqrt(length);
-    const double f0 = flat ? 0.0 : n0 / root, f1 = flat ? 0.0 : n1 / root, f2 = flat ? 0.0 : n2 / root;
-    // V = [e1 e2 f]: the rows of V^{-1} are e2 x f, f x e1 and e1 x e2 over det V.
-    const double c00 = e2[1][l] * f2 - e2[2][l] * f1, c01 = e2[2][l] * f0 - e2[0][l] * f2,
-                 c02 = e2[0][l] * f1 - e2[1][l] * f0;
-    const double c10 = f1 * e1[2][l] - f2 * e1[1][l], c11 = f2 * e1[0][l] - f0 * e1[2][l],
-                 c12 = f0 * e1[1][l] - f1 * e1[0][l];
-    const double inverse_det = 1.0 / (e1[0][l] * c00 + e1[1][l] * c01 + e1[2][l] * c02);
-    const double row[9] = {c00, c01, c02, c10, c11, c12, n0, n1, n2};
-    for (int e = 0; e < 9; ++e) inverse[e][l] = row[e] * inverse_det;
-
     // U = [u1 u2]: u1 along e1, u2 = (n / |n|) x u1.
     const double inverse_e1 = 1.0 / std::sqrt(e1[0][l] * e1[0][l] + e1[1][l] * e1[1][l] + e1[2][l] * e1[2][l]);
     const double u1[3] = {e1[0][l] * inverse_e1, e1[1][l] * inverse_e1, e1[2][l] * inverse_e1};
@@ -69,7 +58,6 @@ void frames_of_batch(const double* rest, const int* triangles, int first, int co
   }
   for (int l = 0; l < count; ++l) {
     const size_t j = static_cast<size_t>(first + l);
-    for (int e = 0; e < 9; ++e) frames.frame_inverse[9 * j + e] = inverse[e][l];
     for (int e = 0; e < 6; ++e) frames.plane_basis[6 * static_cast<size_t>(first) + e * N + l] = basis[e][l];
     for (int e = 0; e < kGradientEntries; ++e) frames.gradient[kGradientEntries * j + e] = gradient[e][l];
   }
@@ -83,7 +71,6 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
   assign_by_team(frames.gradient, kGradientEntries * static_cast<size_t>(num_triangles), 0.0, team);
   const int batches = (num_triangles + kGradientLanes - 1) / kGradientLanes;
   assign_by_team(frames.plane_basis, 6 * static_cast<size_t>(batches) * kGradientLanes, 0.0, team);
-  assign_by_team(frames.frame_inverse, 9 * static_cast<size_t>(num_triangles), 0.0, team);
   // Chunks of batches handed out as threads come free (the ExampleSet's analysis thread shares the
   // cores); each batch's values are the same whichever thread computes them.
   const int batches_per_task = dynamic_chunk(batches, team);
@@ -95,18 +82,34 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
   return frames;
 }
 
+void rest_frame_inverse(const double* gradient, const double* plane_basis, int j, double (&inverse)[9]) {
+  constexpr int N = kGradientLanes;
+  const double* g = gradient + kGradientEntries * static_cast<size_t>(j);
+  const double* basis = plane_basis + 6 * N * static_cast<size_t>(j / N) + j % N;
+  const double u1[3] = {basis[0], basis[2 * N], basis[4 * N]};
+  const double u2[3] = {basis[N], basis[3 * N], basis[5 * N]};
+  const double n[3] = {u1[1] * u2[2] - u1[2] * u2[1], u1[2] * u2[0] - u1[0] * u2[2], u1[0] * u2[1] - u1[1] * u2[0]};
+  // E^{-1} = [g0 g1; 0 g2], so 1 / (p s) = g0 g2.
+  const double normal_scale = std::sqrt(g[0] * g[2]);
+  for (int c = 0; c < 3; ++c) {
+    inverse[c] = g[0] * u1[c] + g[1] * u2[c];
+    inverse[3 + c] = g[2] * u2[c];
+    inverse[6 + c] = normal_scale * n[c];
+  }
+}
+
 Eigen::Matrix3d deformation_gradient(const TriangleFrames& frames, const int* triangles,
                                      const double* vertices, int j) {
   double lanes[9][kGradientLanes];
-  deformation_gradients(frames, triangles, vertices, j, 1, lanes);
+  deformation_gradients(frames.gradient.data(), frames.plane_basis.data(), triangles, vertices, j, 1, lanes);
   Eigen::Matrix3d t;
   for (int e = 0; e < 9; ++e) t(e / 3, e % 3) = lanes[e][0];
   return t;
 }
 
 MESHIK_SIMD_CLONES
-void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
-                           int count, double (&t)[9][kGradientLanes]) {
+void deformation_gradients(const double* gradient, const double* plane_basis, const int* triangles,
+                           const double* vertices, int first, int count, double (&t)[9][kGradientLanes]) {
   constexpr int N = kGradientLanes;
   // Deformed frame D = [e1 e2 n / sqrt|n|] (rows r, columns c: d[3 r + c]) and V^{-1}, per lane;
   // lanes past count repeat the last triangle.
@@ -118,7 +121,9 @@ void deformation_gradients(const TriangleFrames& frames, const int* triangles, c
       d[3 * r][l] = e1[r][l];
       d[3 * r + 1][l] = e2[r][l];
     }
-    for (int e = 0; e < 9; ++e) inverse[e][l] = frames.frame_inverse[9 * static_cast<size_t>(j) + e];
+    double triangle_inverse[9];
+    rest_frame_inverse(gradient, plane_basis, j, triangle_inverse);
+    for (int e = 0; e < 9; ++e) inverse[e][l] = triangle_inverse[e];
   }
   for (int l = 0; l < N; ++l) {
     const double n0 = d[3][l] * d[7][l] - d[6][l] * d[4][l];

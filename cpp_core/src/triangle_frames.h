@@ -1,9 +1,12 @@
-// Per-triangle rest geometry: the frame with the fourth vertex, its inverse, an orthonormal basis
-// of the triangle's plane and the in-plane gradient coefficients of its corners.
+// Per-triangle rest geometry: an orthonormal basis of the triangle's plane and the in-plane
+// gradient coefficients of its corners, from which the inverse rest frame follows.
 //
 // Notation (DESIGN.md section 2): for corners v1, v2, v3 the fourth vertex is
 //   v4 = v1 + (v2 - v1) x (v3 - v1) / sqrt(|(v2 - v1) x (v3 - v1)|),
 // the frame is V = [v2 - v1, v3 - v1, v4 - v1] and a deformed copy's gradient is T = V~ V^{-1}.
+// In the plane basis U = [u1 u2] and the unit normal n = u1 x u2, V = [U n] diag(E, sqrt(p s)) with
+// E = U^T [v2 - v1, v3 - v1] = [p q; 0 s] (p, s > 0, p s twice the area), so
+// V^{-1} = diag(E^{-1}, 1 / sqrt(p s)) [U n]^T: nothing beyond U and E^{-1} needs storing.
 //
 // Eliminating the fourth vertex: T's component along the rest normal is matched exactly by the
 // deformed fourth vertex, so only T U matters, with U (3 by 2) an orthonormal basis of the rest
@@ -45,9 +48,6 @@ struct TriangleFrames {
   // kGradientLanes + lane for triangle j = b kGradientLanes + lane, zero in the last batch's
   // padding lanes (ExampleFeatures::plane_basis's layout: the features take it over).
   PageArray<double> plane_basis;
-  // #F by 3 by 3 row-major: V^{-1}, the inverse rest frame (fourth vertex included); freed by
-  // compute_example_features.
-  PageArray<double> frame_inverse;
 };
 
 // rest: #V by 3 positions; triangles: #F by 3 indices of non-degenerate triangles. team: threads
@@ -56,6 +56,11 @@ TriangleFrames compute_triangle_frames(const double* rest, const int* triangles,
 
 // (e1 x e2) / sqrt(|e1 x e2|): the fourth vertex minus the first; zero for a degenerate triangle.
 Eigen::Vector3d fourth_vertex_offset(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2);
+
+// gradient: #F by kGradientEntries (TriangleFrames::gradient's values); plane_basis:
+// TriangleFrames::plane_basis's layout. Writes triangle j's inverse rest frame V^{-1} (fourth vertex
+// included) as 9 row-major entries: the two rows of E^{-1} U^T, then n^T / sqrt(p s).
+void rest_frame_inverse(const double* gradient, const double* plane_basis, int j, double (&inverse)[9]);
 
 // The deformation gradient T = V~ V^{-1} (3 by 3) of triangle j of frames, deformed to corner
 // positions taken from vertices (#V by 3) through triangles (#F by 3).
@@ -83,10 +88,10 @@ MESHIK_LANE_INLINE void edge_lanes(const double* vertices, const int* triangles,
 }
 
 // deformation_gradient for the count (1 <= count <= kGradientLanes) triangles first, first + 1,
-// ...: writes entry (r, c) of lane l's gradient to t[3 r + c][l] (lanes past count repeat the
-// last triangle's).
-void deformation_gradients(const TriangleFrames& frames, const int* triangles, const double* vertices, int first,
-                           int count, double (&t)[9][kGradientLanes]);
+// ..., their rest frames given as to rest_frame_inverse: writes entry (r, c) of lane l's gradient
+// to t[3 r + c][l] (lanes past count repeat the last triangle's).
+void deformation_gradients(const double* gradient, const double* plane_basis, const int* triangles,
+                           const double* vertices, int first, int count, double (&t)[9][kGradientLanes]);
 
 // An Eigen view of triangle j's plane basis U (3 by 2) in frames.
 inline Eigen::Map<const Eigen::Matrix<double, 3, 2, Eigen::RowMajor>, Eigen::Unaligned,

@@ -75,6 +75,22 @@ TEST_F(GradientOperator, KeptOperatorGivesTheDeformationGradients) {
   }
 }
 
+// A rotated, scaled and moved copy of the rest mesh: every triangle's edges and fourth vertex turn by
+// the same s R, so each deformation gradient is s R, its column along the rest normal included (the
+// inverse rest frame's last row, which the in-plane test below does not see).
+TEST_F(GradientOperator, DeformationGradientOfASimilarCopyIsItsMatrix) {
+  const Eigen::Matrix3d similarity =
+      1.7 * Eigen::AngleAxisd(1.2, Eigen::Vector3d(0.3, -1.1, 0.6).normalized()).toRotationMatrix();
+  const Eigen::Vector3d shift(0.4, -2.0, 1.5);
+  std::vector<double> pose(meshes_.rest.size());
+  for (int v = 0; v < meshes_.num_vertices(); ++v)
+    Eigen::Vector3d::Map(&pose[3 * v]) = similarity * Eigen::Vector3d::Map(&meshes_.rest[3 * v]) + shift;
+  for (int j = 0; j < meshes_.num_triangles(); ++j) {
+    const Eigen::Matrix3d t = meshik::deformation_gradient(frames_, meshes_.triangles.data(), pose.data(), j);
+    EXPECT_LT((t - similarity).norm(), 1e-12) << "triangle " << j << "\n" << t;
+  }
+}
+
 TEST_F(GradientOperator, TimesThePlaneBasisItIsTheInPlaneGradientOfTheCorners) {
   std::mt19937 random(5);
   std::normal_distribution<double> normal;

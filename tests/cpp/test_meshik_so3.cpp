@@ -442,9 +442,8 @@ TEST(So3, TrianglePolarDecompositionMatchesTheSvdOne) {
   for (int first = 0; first < m; first += N) {
     const int count = std::min(N, m - first);
     double rotation_lanes[9][N], stretch_lanes[6][N], log_lanes[3][N];
-    meshik::triangle_polar_and_log_batch(frames, frames.plane_basis.data() + 6 * static_cast<size_t>(first),
-                                         triangles.data(), deformed.data(), first, count, rotation_lanes,
-                                         stretch_lanes, log_lanes);
+    meshik::triangle_polar_and_log_batch(frames, frames.plane_basis.data(), triangles.data(), deformed.data(), first,
+                                         count, rotation_lanes, stretch_lanes, log_lanes);
     for (int l = 0; l < count; ++l) {
       const int j = first + l;
       Eigen::Matrix3d rotation;
