@@ -77,13 +77,13 @@ decltype(auto) visit_feature_values(Features& features, Visit&& visit) {
 }
 
 // frames / adjacency / triangles (#F by 3): the rest mesh's; the features take over the frames'
-// plane basis (the in-plane gradients are left). examples: #E
-// pointers to #V by 3 positions. consistent_branches = false keeps the principal rotation logs
-// (for comparison only). precision: how the values are stored (FeaturePrecision).
-// progress(fraction) is called once per example, on the calling thread. threads: 0 = all cores,
-// n = n threads over blocks of triangles (see thread_count); the result is identical for any count.
-// threads_free (when set) is asked before each parallel pass how many of those threads it may use
-// (1 to the team; the caller's other work may hold the rest of the cores).
+// plane basis (the in-plane gradients are left). examples: #E pointers to #V by 3 positions.
+// consistent_branches = false keeps the principal rotation logs (for comparison only). precision:
+// how the values are stored (FeaturePrecision). progress(fraction) is called once per example, on
+// the calling thread. threads: 0 = all cores, n = n threads over blocks of triangles (see
+// thread_count); the result is identical for any count. threads_free (when set) is asked before
+// each parallel pass how many of those threads it may use (1 to the team; the caller's other work
+// may hold the rest of the cores).
 ExampleFeatures compute_example_features(TriangleFrames& frames,
                                          const TriangleAdjacency& adjacency, const int* triangles,
                                          const std::vector<const double*>& examples,
