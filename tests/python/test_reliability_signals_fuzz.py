@@ -35,6 +35,42 @@ def test_sigterm_stops_a_pose_and_leaves_no_output(samples_dir, tmp_path):
     assert not out.exists() or not any(out.iterdir()), sorted(out.rglob("*"))
 
 
+
+# Run in a fresh interpreter: pymeshlab's C++ extension imports numpy while it initializes (after
+# the finders are asked for pymeshlab.pmeshlab), so an import hook that raises KeyboardInterrupt at
+# that import of numpy delivers the interrupt where a SIGTERM arriving during the first load did
+# (a CI run of 2026-12-08: `meshik pose` exited 1 with a traceback instead of 130).
+_INTERRUPTED_IMPORT = """
+import sys
+
+class InterruptAtNumpy:
+    armed = False
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "pymeshlab.pmeshlab":
+            InterruptAtNumpy.armed = True
+        elif name == "numpy" and InterruptAtNumpy.armed:
+            raise KeyboardInterrupt
+        return None
+
+sys.meta_path.insert(0, InterruptAtNumpy())
+from meshik.inputs.meshlab_module import pymeshlab_module
+try:
+    pymeshlab_module()
+except KeyboardInterrupt:
+    print("KeyboardInterrupt")
+except BaseException as error:
+    print(type(error).__name__, repr(error.__cause__))
+"""
+
+
+def test_an_interrupt_while_pymeshlab_initializes_stays_an_interrupt():
+    """pymeshlab's extension turns an interrupt during its initialization into ImportError
+    ("initialization failed"); the pipeline must see the interrupt, so that `meshik pose` stops with
+    status 130 and no traceback instead of failing as a broken install."""
+    run = subprocess.run([sys.executable, "-c", _INTERRUPTED_IMPORT], capture_output=True, text=True, timeout=120)
+    assert run.stdout.strip() == "KeyboardInterrupt", (run.stdout, run.stderr)
+
 obj_lines = st.one_of(
     st.builds(lambda x, y, z: f"v {x} {y} {z}", *[st.sampled_from(["0", "1", "-2.5", "nan", "inf", "1e300", "x"])] * 3),
     st.builds(lambda a, b, c: f"f {a} {b} {c}", *[st.integers(-10, 12)] * 3),

@@ -25,7 +25,7 @@ def pymeshlab_module() -> ModuleType:
     with _lock:
         if not _imported:
             if threading.current_thread() is threading.main_thread():
-                importlib.import_module("pymeshlab")
+                _import_pymeshlab()
             else:
                 _import_on_parked_thread()
             _imported = True
@@ -40,7 +40,7 @@ def _import_on_parked_thread() -> None:
 
     def import_and_park() -> None:
         try:
-            importlib.import_module("pymeshlab")
+            _import_pymeshlab()
         except BaseException as error:  # noqa: BLE001 - handed to the caller
             failure.append(error)
         imported.set()
@@ -50,3 +50,16 @@ def _import_on_parked_thread() -> None:
     imported.wait()
     if failure:
         raise failure[0]
+
+
+def _import_pymeshlab() -> None:
+    """Import pymeshlab. A KeyboardInterrupt (Ctrl+C, or SIGTERM through the command line's
+    handler) that arrives while its C++ extension initializes comes back from the import as an
+    ImportError ("initialization failed") caused by it: that interrupt is raised again as itself, so
+    that an interrupted run stops as interrupted (exit status 130) and not as a failed import."""
+    try:
+        importlib.import_module("pymeshlab")
+    except ImportError as error:
+        if isinstance(error.__cause__, KeyboardInterrupt):
+            raise error.__cause__ from None
+        raise
