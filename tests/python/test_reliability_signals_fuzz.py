@@ -35,7 +35,6 @@ def test_sigterm_stops_a_pose_and_leaves_no_output(samples_dir, tmp_path):
     assert not out.exists() or not any(out.iterdir()), sorted(out.rglob("*"))
 
 
-
 # Run in a fresh interpreter: pymeshlab's C++ extension imports numpy while it initializes (after
 # the finders are asked for pymeshlab.pmeshlab), so an import hook that raises KeyboardInterrupt at
 # that import of numpy delivers the interrupt where a SIGTERM arriving during the first load did
@@ -70,6 +69,7 @@ def test_an_interrupt_while_pymeshlab_initializes_stays_an_interrupt():
     status 130 and no traceback instead of failing as a broken install."""
     run = subprocess.run([sys.executable, "-c", _INTERRUPTED_IMPORT], capture_output=True, text=True, timeout=120)
     assert run.stdout.strip() == "KeyboardInterrupt", (run.stdout, run.stderr)
+
 
 obj_lines = st.one_of(
     st.builds(lambda x, y, z: f"v {x} {y} {z}", *[st.sampled_from(["0", "1", "-2.5", "nan", "inf", "1e300", "x"])] * 3),
