@@ -109,7 +109,7 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
   // triangle has joined since are passed over when they come up.
   using Edge = std::tuple<double, int, int>;
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> frontier;
-  std::vector<int> queue(m), leaving;
+  const SafeBasinMembers members = safe_basin_members(adjacency, basins);
   // Raw pointers: the loops' stores could otherwise alias the vectors' own fields.
   const int* start = adjacency.start.data();
   const int* neighbour = adjacency.neighbour.data();
@@ -120,44 +120,22 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
       if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], j, neighbour[s]);
   };
   // Adds the basin of x at `level` to the tree with its principal logs (x outside the tree, the
-  // basin not entered), and offers the edges leaving it.
+  // basin not entered), and offers the edges leaving it (those of a higher level to triangles
+  // outside: the links inside the basin are shorter).
   const auto join_basin = [&](int x, int level) {
-    int* const basin = queue.data();
-    int size = 1;
-    basin[0] = x;
-    leaving.clear();
-    in_state[x] = kPrincipal;
-    for (int head = 0; head < size; ++head) {
-      const int j = basin[head];
-      for (int s = start[j]; s < start[j + 1]; ++s) {
-        const int n = neighbour[s];
-        if (in_state[n] != kOutside) continue;
-        if (edge_level[s] <= level) {
-          in_state[n] = kPrincipal;
-          basin[size++] = n;
-        } else {
-          leaving.insert(leaving.end(), {j, s});
-        }
-      }
-    }
-    for (size_t p = 0; p < leaving.size(); p += 2) {
-      const int s = leaving[p + 1];
-      if (in_state[neighbour[s]] == kOutside) frontier.emplace(distances[s], leaving[p], neighbour[s]);
-    }
+    const int* first = members.member.data() + members.start[members.basin_of[x]];
+    const int* last = members.member.data() + members.start[members.basin_of[x] + 1];
+    for (const int* p = first; p != last; ++p) in_state[*p] = kPrincipal;
+    for (const int* p = first; p != last; ++p)
+      for (int s = start[*p]; s < start[*p + 1]; ++s)
+        if (edge_level[s] > level && in_state[neighbour[s]] == kOutside)
+          frontier.emplace(distances[s], *p, neighbour[s]);
   };
-  // Marks the triangles of x's basin at `level` (x outside the tree, the basin not entered) to be
-  // added one by one.
-  const auto unmark_basin = [&](int x, int level) {
-    int* const basin = queue.data();
-    int size = 1;
-    basin[0] = x;
-    basins.safe_level[x] = -1;
-    for (int head = 0; head < size; ++head)
-      for (int s = start[basin[head]]; s < start[basin[head] + 1]; ++s)
-        if (edge_level[s] <= level && basins.safe_level[neighbour[s]] >= 0) {
-          basins.safe_level[neighbour[s]] = -1;
-          basin[size++] = neighbour[s];
-        }
+  // Marks the triangles of x's basin (x outside the tree, the basin not entered) to be added one
+  // by one.
+  const auto unmark_basin = [&](int x) {
+    const int basin = members.basin_of[x];
+    for (int p = members.start[basin]; p < members.start[basin + 1]; ++p) basins.safe_level[members.member[p]] = -1;
   };
   // Adds x to the tree, reached from `from` (-1 for a root).
   const auto join = [&](int x, int from) {
@@ -169,7 +147,7 @@ std::vector<int> choose_consistent_log_branches(const TriangleAdjacency& adjacen
         join_basin(x, level);
         return;
       }
-      unmark_basin(x, level);
+      unmark_basin(x);
     }
     const Eigen::Vector3d principal = logs[x];
     if (from >= 0) logs[x] = closest_log_branch(principal, logs[from]);

@@ -2,6 +2,7 @@
 #include "safe_basins.h"
 
 #include <cstddef>
+#include <numeric>
 
 namespace meshik {
 
@@ -49,6 +50,56 @@ SafeBasins safe_basins(const TriangleAdjacency& adjacency, const double* distanc
     current = std::vector<int>();
   }
   return basins;
+}
+
+SafeBasinMembers safe_basin_members(const TriangleAdjacency& adjacency, const SafeBasins& basins) {
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
+  const int* start = adjacency.start.data();
+  const int* neighbour = adjacency.neighbour.data();
+  const signed char* safe_level = basins.safe_level.data();
+  const signed char* edge_level = basins.edge_level.data();
+  // A basin of level l: the triangles of safe level l linked by edges of level <= l (every
+  // triangle of a basin has the basin's safe level). Union-find over those links, each taken from
+  // its larger end, the lesser root kept: every set's root is its least triangle.
+  std::vector<int> parent(m);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root_of = [&parent](int a) {
+    while (parent[a] != a) {
+      parent[a] = parent[parent[a]];
+      a = parent[a];
+    }
+    return a;
+  };
+  for (int j = 0; j < m; ++j) {
+    const int level = safe_level[j];
+    if (level < 0) continue;
+    for (int s = start[j]; s < start[j + 1]; ++s) {
+      const int n = neighbour[s];
+      if (n >= j || edge_level[s] > level || safe_level[n] != level) continue;
+      const int a = root_of(j), b = root_of(n);
+      if (a < b) parent[b] = a;
+      else parent[a] = b;
+    }
+  }
+  // Basins numbered as their roots come (a root precedes its set's other triangles), then listed.
+  SafeBasinMembers members;
+  members.basin_of.assign(m, -1);
+  int count = 0;
+  for (int j = 0; j < m; ++j)
+    if (safe_level[j] >= 0) {
+      const int root = root_of(j);
+      members.basin_of[j] = root == j ? count++ : members.basin_of[root];
+    }
+  members.start.assign(count + 1, 0);
+  for (int j = 0; j < m; ++j)
+    if (members.basin_of[j] >= 0) ++members.start[members.basin_of[j] + 1];
+  std::partial_sum(members.start.begin(), members.start.end(), members.start.begin());
+  members.member.resize(members.start[count]);
+  std::vector<int>& fill = parent;  // the next free place of each basin's list
+  std::copy(members.start.begin(), members.start.end() - 1, fill.begin());
+  for (int j = 0; j < m; ++j)
+    if (members.basin_of[j] >= 0) members.member[fill[members.basin_of[j]]++] = j;
+  return members;
 }
 
 }  // namespace meshik

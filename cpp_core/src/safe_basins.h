@@ -33,4 +33,18 @@ struct SafeBasins {
 SafeBasins safe_basins(const TriangleAdjacency& adjacency, const double* distances,
                        const std::vector<double>& thresholds, const std::vector<int>& unsafe);
 
+// The safe basins as lists of triangles: for each triangle j with a safe level (>= 0), its basin at
+// that level, the basins of every level numbered together by their least triangle; the
+// triangles of basin b, increasing, are member[start[b] .. start[b + 1]).
+struct SafeBasinMembers {
+  std::vector<int> basin_of;  // #F: the basin, or -1 for a triangle without a safe level
+  std::vector<int> start;     // #basins + 1
+  std::vector<int> member;    // the triangles with a safe level, basin by basin
+};
+
+// adjacency: as for safe_basins; basins: safe_basins' result for it. One pass over the links in
+// index order (a union-find), not a search through each basin: the lists come out in the order
+// of the triangles, whose neighbours lie close in memory.
+SafeBasinMembers safe_basin_members(const TriangleAdjacency& adjacency, const SafeBasins& basins);
+
 }  // namespace meshik

@@ -16,6 +16,7 @@
 #include "mesh_topology.h"
 #include "polar_batch.h"
 #include "rotation_branches.h"
+#include "safe_basins.h"
 #include "so3.h"
 #include "triangle_frames.h"
 
@@ -391,6 +392,62 @@ TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangl
       EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[j], rotations[n])) << j << " " << n;
       EXPECT_EQ(whole[s], meshik::rotation_distance(rotations[n], rotations[j])) << j << " " << n;
     }
+}
+
+TEST(RotationBranches, SafeBasinListsHoldTheTrianglesLinkedAtTheirSafeLevel) {
+  // A grid of 12 x 30 x 2 triangles, each edge's length drawn below, between and above the two
+  // thresholds, a few unsafe edges: the list of a triangle with a safe level l holds exactly the
+  // triangles a search reaches from it along edges of level <= l, in increasing order.
+  std::vector<int> triangles;
+  const int vertices = append_strip(12, 30, 0, triangles);
+  const int m = static_cast<int>(triangles.size() / 3);
+  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> pick(0, 9);
+  const double lengths[] = {1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 0.05, 0.05, 0.05, 0.5};
+  std::vector<double> distances(adjacency.neighbour.size());
+  std::vector<int> unsafe;
+  for (int j = 0; j < m; ++j)
+    for (int s = adjacency.start[j]; s < adjacency.start[j + 1]; ++s) {
+      const int n = adjacency.neighbour[s];
+      if (n < j) continue;  // the lesser end draws the length; the other end copies it
+      distances[s] = lengths[pick(random)];
+      for (int t = adjacency.start[n]; t < adjacency.start[n + 1]; ++t)
+        if (adjacency.neighbour[t] == j) distances[t] = distances[s];
+      if (j % 97 == 0) unsafe.insert(unsafe.end(), {j, n});
+    }
+  const meshik::SafeBasins basins = meshik::safe_basins(adjacency, distances.data(), {1e-3, 1e-1}, unsafe);
+  const meshik::SafeBasinMembers members = meshik::safe_basin_members(adjacency, basins);
+  int at_level[3] = {0, 0, 0};  // triangles of safe level -1, 0 and 1
+  int first_of_previous = -1;
+  for (size_t b = 0; b + 1 < members.start.size(); ++b) {
+    EXPECT_GT(members.member[members.start[b]], first_of_previous);  // numbered by least triangle
+    first_of_previous = members.member[members.start[b]];
+  }
+  for (int j = 0; j < m; ++j) {
+    const int level = basins.safe_level[j];
+    ++at_level[level + 1];
+    if (level < 0) {
+      EXPECT_EQ(members.basin_of[j], -1) << j;
+      continue;
+    }
+    std::vector<char> reached(m, 0);
+    std::vector<int> basin = {j};
+    reached[j] = 1;
+    for (size_t head = 0; head < basin.size(); ++head)
+      for (int s = adjacency.start[basin[head]]; s < adjacency.start[basin[head] + 1]; ++s)
+        if (basins.edge_level[s] <= level && !reached[adjacency.neighbour[s]]) {
+          reached[adjacency.neighbour[s]] = 1;
+          basin.push_back(adjacency.neighbour[s]);
+        }
+    std::sort(basin.begin(), basin.end());
+    const int b = members.basin_of[j];
+    ASSERT_GE(b, 0) << j;
+    EXPECT_EQ(std::vector<int>(members.member.begin() + members.start[b], members.member.begin() + members.start[b + 1]),
+              basin)
+        << j;
+  }
+  for (int count : at_level) EXPECT_GT(count, 0);
 }
 
 TEST(RotationBranches, TriangleComponentsAreNumberedByTheirLeastTriangle) {
