@@ -97,46 +97,28 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   impl.num_vertices = rest.num_vertices;
   impl.num_triangles = rest.num_triangles;
   impl.num_examples = static_cast<int>(examples.size());
-  LocalityOrder order = locality_order(rest.triangles, rest.num_triangles, rest.num_vertices);
-  impl.vertex_of_internal = std::move(order.vertex_of_internal);
-  impl.internal_of_vertex = std::move(order.internal_of_vertex);
-  impl.rest = impl.to_internal(rest.vertices);
-  impl.triangles.reserve(3 * static_cast<size_t>(rest.num_triangles));
-  for (int j : order.triangle_order)
-    for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
-  impl.triangle_of_internal = std::move(order.triangle_order);
   if (threads < 0 || threads > kMaxThreads)
     throw InputError("threads must be 0 (all cores) or a count from 1 to " + std::to_string(kMaxThreads) + ", got " +
                      std::to_string(threads));
   const int team = thread_count(threads);
-  // The examples in the internal order, copied on the team (one example per thread at a time; an
-  // allocation failure is rethrown after the loop), first touched by the copy.
-  const int num_examples = impl.num_examples;
-  std::vector<PageArray<double>> internal_examples(num_examples);
-  std::vector<std::exception_ptr> copy_failure(num_examples);
-#pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
-  for (int i = 0; i < num_examples; ++i) {
-    try {
-      size_unwritten(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices));
-      impl.to_internal(examples[i], internal_examples[i].data());
-    } catch (...) {
-      copy_failure[i] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& failure : copy_failure)
-    if (failure) std::rethrow_exception(failure);
-  std::vector<const double*> example_pointers;
-  for (const PageArray<double>& e : internal_examples) example_pointers.push_back(e.data());
+  LocalityOrder order = locality_order(rest.triangles, rest.num_triangles, rest.num_vertices);
+  impl.vertex_of_internal = std::move(order.vertex_of_internal);
+  impl.internal_of_vertex = std::move(order.internal_of_vertex);
+  impl.triangles.reserve(3 * static_cast<size_t>(rest.num_triangles));
+  for (int j : order.triangle_order)
+    for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
+  impl.triangle_of_internal = std::move(order.triangle_order);
   clock.lap("locality order");
   const int* triangles = impl.triangles.data();
   // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the system's
   // rows (the vertices of the components), its pattern and an analysis of it (ordering and
   // symbolic factorization: serial, about 0.6 s at 1M triangles). These need the triangles only:
-  // with more than one thread they run on a thread of their own beside the frames and the
-  // features, the rows and pattern announced by `rows_ready` (waited for before the centroids),
-  // the analysis after them. They write components, system_row_of_vertex, built_pattern and
-  // system_analysis alone; the analysis is waited for below (or, should anything throw first,
-  // by the future's destructor, before what it uses goes).
+  // with more than one thread they run on a thread of their own, started as soon as the triangles
+  // are in the internal order, beside the copies of the positions, the frames and the features,
+  // the rows and pattern announced by `rows_ready` (waited for before the centroids), the analysis
+  // after them. They write components, system_row_of_vertex, built_pattern and system_analysis
+  // alone; the analysis is waited for below (or, should anything throw first, by the future's
+  // destructor, before what it uses goes).
   const bool cached = share_cached_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
   CscMatrix built_pattern;
   const auto number_rows = [&impl, &built_pattern, &rest, triangles, cached] {
@@ -170,7 +152,6 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
     number_rows();
     rows_ready.set_value();
   }
-  clock.lap("system pattern");
   // The team less the core the analysis thread holds while it runs, for the frames, the adjacency,
   // the features and the normal matrix (each the same for any team): the analysis is the longest
   // task here, and sharing its core with the team's passes only delays it.
@@ -179,6 +160,27 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
         analysis.valid() && analysis.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
     return running ? std::max(1, team - 1) : team;
   };
+  impl.rest = impl.to_internal(rest.vertices);
+  // The examples in the internal order, copied on the whole team beside the starting analysis
+  // thread (one example per thread at a time; an allocation failure is rethrown after the loop),
+  // first touched by the copy.
+  const int num_examples = impl.num_examples;
+  std::vector<PageArray<double>> internal_examples(num_examples);
+  std::vector<std::exception_ptr> copy_failure(num_examples);
+#pragma omp parallel for schedule(static, 1) num_threads(team) if (team > 1 && num_examples > 1)
+  for (int i = 0; i < num_examples; ++i) {
+    try {
+      size_unwritten(internal_examples[i], 3 * static_cast<size_t>(rest.num_vertices));
+      impl.to_internal(examples[i], internal_examples[i].data());
+    } catch (...) {
+      copy_failure[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& failure : copy_failure)
+    if (failure) std::rethrow_exception(failure);
+  std::vector<const double*> example_pointers;
+  for (const PageArray<double>& e : internal_examples) example_pointers.push_back(e.data());
+  clock.lap("copies");
   impl.frames = compute_triangle_frames(impl.rest.data(), triangles, rest.num_triangles, team_beside_analysis());
   TriangleAdjacency adjacency =
       triangle_adjacency(triangles, rest.num_triangles, rest.num_vertices, team_beside_analysis());
