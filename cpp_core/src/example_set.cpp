@@ -108,21 +108,21 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   for (int j : order.triangle_order)
     for (int q = 0; q < 3; ++q) impl.triangles.push_back(impl.internal_of_vertex[rest.triangles[3 * j + q]]);
   impl.triangle_of_internal = std::move(order.triangle_order);
+  impl.components = std::move(order.components);
   clock.lap("locality order");
   const int* triangles = impl.triangles.data();
   // The analysis of an earlier ExampleSet of these triangles (analysis_cache.h), or the system's
-  // rows (the vertices of the components), its pattern and an analysis of it (ordering and
-  // symbolic factorization: serial, about 0.6 s at 1M triangles). These need the triangles only:
-  // with more than one thread they run on a thread of their own, started as soon as the triangles
-  // are in the internal order, beside the copies of the positions, the frames and the features,
-  // the rows and pattern announced by `rows_ready` (waited for before the centroids), the analysis
-  // after them. They write components, system_row_of_vertex, built_pattern and system_analysis
-  // alone; the analysis is waited for below (or, should anything throw first, by the future's
-  // destructor, before what it uses goes).
+  // rows (the vertices of the components, in the internal order), its pattern and an analysis of
+  // it (ordering and symbolic factorization: serial, about 0.6 s at 1M triangles). These need the
+  // triangles only: with more than one thread they run on a thread of their own, started as soon
+  // as the triangles are in the internal order, beside the copies of the positions, the frames and
+  // the features, the rows and pattern announced by `rows_ready` (waited for before the
+  // centroids), the analysis after them. They write system_row_of_vertex, built_pattern and
+  // system_analysis alone; the analysis is waited for below (or, should anything throw first, by
+  // the future's destructor, before what it uses goes).
   const bool cached = share_cached_analysis(impl.triangles, rest.num_vertices, impl.system_analysis);
   CscMatrix built_pattern;
   const auto number_rows = [&impl, &built_pattern, &rest, triangles, cached] {
-    impl.components = vertex_components(triangles, rest.num_triangles, rest.num_vertices);
     impl.system_row_of_vertex.assign(rest.num_vertices, -1);
     int system_rows = 0;
     for (int v = 0; v < rest.num_vertices; ++v)
@@ -192,7 +192,7 @@ ExampleSet::ExampleSet(const MeshView& rest, const std::vector<const double*>& e
   // and the adjacency nowhere.
   adjacency = TriangleAdjacency();
   clock.lap("features");
-  rows.get();  // the components and the system's rows and pattern
+  rows.get();  // the system's rows and pattern
   compute_centroids(impl, example_pointers);
   // Nor the examples (their copies in the internal order).
   example_pointers.clear();

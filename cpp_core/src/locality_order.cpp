@@ -24,8 +24,20 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
     }
 
   LocalityOrder order;
-  order.vertex_of_internal = sparse::breadth_first_order(start, neighbour);
+  std::vector<int> run_starts;
+  order.vertex_of_internal = sparse::breadth_first_order(start, neighbour, &run_starts);
   order.internal_of_vertex = sparse::invert_permutation(order.vertex_of_internal);
+  // The runs of the breadth-first order are the components; the vertices of no triangle (empty
+  // lists) follow them.
+  int in_triangles = 0;
+  for (int v = 0; v < num_vertices; ++v) in_triangles += start[v + 1] > start[v];
+  run_starts.push_back(in_triangles);
+  VertexComponents& components = order.components;
+  components.count = static_cast<int>(run_starts.size()) - 1;
+  components.component_of_vertex.assign(num_vertices, -1);
+  for (int c = 0; c < components.count; ++c)
+    std::fill(components.component_of_vertex.begin() + run_starts[c],
+              components.component_of_vertex.begin() + run_starts[c + 1], c);
 
   std::vector<int> smallest(num_triangles);
   for (int j = 0; j < num_triangles; ++j)

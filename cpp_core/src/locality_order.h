@@ -6,12 +6,17 @@
 
 #include <vector>
 
+#include "mesh_topology.h"
+
 namespace meshik {
 
 struct LocalityOrder {
   std::vector<int> vertex_of_internal;  // #V: the user's index of each internal vertex
   std::vector<int> internal_of_vertex;  // #V: the internal index of each user vertex
   std::vector<int> triangle_order;      // #F: the user's index of each internal triangle
+  // The connected components of the internal vertices (linked by sharing a triangle), numbered by
+  // their least internal vertex: the runs of the breadth-first order.
+  VertexComponents components;
 };
 
 // triangles: #F by 3 vertex indices in [0, num_vertices). Vertices in breadth-first

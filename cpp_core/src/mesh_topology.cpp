@@ -1,5 +1,4 @@
-// Vertex components (union-find over triangle edges), triangle edge adjacency and triangle
-// components.
+// Triangle edge adjacency and triangle components.
 #include "mesh_topology.h"
 
 #include <algorithm>
@@ -15,41 +14,7 @@ namespace {
 // a smaller mesh).
 constexpr int kTrianglesPerThread = 16384;
 
-// Root of x in a union-find forest, halving paths on the way.
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
-}
-
 }  // namespace
-
-VertexComponents vertex_components(const int* triangles, int num_triangles, int num_vertices) {
-  std::vector<int> parent(num_vertices);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<char> used(num_vertices, 0);
-  for (int j = 0; j < num_triangles; ++j) {
-    const int* t = triangles + 3 * j;
-    used[t[0]] = used[t[1]] = used[t[2]] = 1;
-    for (int q = 1; q < 3; ++q) {
-      const int a = find_root(parent, t[0]);
-      const int b = find_root(parent, t[q]);
-      if (a != b) parent[a] = b;
-    }
-  }
-  VertexComponents components;
-  components.component_of_vertex.assign(num_vertices, -1);
-  std::vector<int> id_of_root(num_vertices, -1);
-  for (int v = 0; v < num_vertices; ++v) {
-    if (!used[v]) continue;
-    const int root = find_root(parent, v);
-    if (id_of_root[root] < 0) id_of_root[root] = components.count++;
-    components.component_of_vertex[v] = id_of_root[root];
-  }
-  return components;
-}
 
 TriangleAdjacency triangle_adjacency(const int* triangles, int num_triangles, int num_vertices, int team) {
   // The triangles' edges by their lower vertex, in compressed rows: (higher vertex, triangle),

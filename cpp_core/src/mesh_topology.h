@@ -1,5 +1,5 @@
-// Connectivity of a triangle mesh: connected components of the vertices used by triangles, and
-// the edge adjacency of triangles.
+// Connectivity of a triangle mesh: connected components of the vertices used by triangles (as
+// locality_order finds them), and the edge adjacency and components of triangles.
 #pragma once
 
 #include <vector>
@@ -12,9 +12,6 @@ struct VertexComponents {
   std::vector<int> component_of_vertex;
   int count = 0;
 };
-
-// triangles: #F by 3 row-major vertex indices (valid, in [0, num_vertices)).
-VertexComponents vertex_components(const int* triangles, int num_triangles, int num_vertices);
 
 // Triangles sharing an edge, in compressed rows: the neighbours of triangle j are
 // neighbour[start[j] .. start[j+1]). A non-manifold edge makes all its triangles neighbours.

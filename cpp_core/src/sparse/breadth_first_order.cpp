@@ -14,7 +14,8 @@ std::vector<int> stable_order_by_key(const std::vector<int>& key, int key_bound)
   return order;
 }
 
-std::vector<int> breadth_first_order(const std::vector<int>& start, const std::vector<int>& neighbour) {
+std::vector<int> breadth_first_order(const std::vector<int>& start, const std::vector<int>& neighbour,
+                                     std::vector<int>* run_starts) {
   const int n = static_cast<int>(start.size()) - 1;
   std::vector<int> length(n);
   for (int v = 0; v < n; ++v) length[v] = start[v + 1] - start[v];
@@ -30,6 +31,7 @@ std::vector<int> breadth_first_order(const std::vector<int>& start, const std::v
   for (int root : by_length) {
     if (reached[root] || length[root] == 0) continue;
     size_t head = order.size();
+    if (run_starts != nullptr) run_starts->push_back(static_cast<int>(head));
     reach(root);
     for (; head < order.size(); ++head) {
       const int v = order[head];

@@ -12,7 +12,10 @@ std::vector<int> stable_order_by_key(const std::vector<int>& key, int key_bound)
 // start: n + 1 offsets; neighbour: node v's neighbours are neighbour[start[v] .. start[v + 1])
 // (repeats allowed). Returns the n nodes in breadth-first order: each component from a node of
 // shortest list (ties: the lower node) not yet reached, neighbours in list order; nodes with empty
-// lists last, increasing.
-std::vector<int> breadth_first_order(const std::vector<int>& start, const std::vector<int>& neighbour);
+// lists last, increasing. Each component is one run of the order; with run_starts, the position
+// of each run's first node is appended to *run_starts, increasing (the nodes with empty lists
+// follow the last run).
+std::vector<int> breadth_first_order(const std::vector<int>& start, const std::vector<int>& neighbour,
+                                     std::vector<int>* run_starts = nullptr);
 
 }  // namespace meshik::sparse
