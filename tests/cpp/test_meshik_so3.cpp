@@ -298,6 +298,13 @@ int append_strip(int rows, int cols, int base, std::vector<int>& triangles) {
   return (rows + 1) * (cols + 1);
 }
 
+// The edge adjacency of one strip of rows x cols cells (append_strip's triangles).
+meshik::TriangleAdjacency strip_adjacency(int rows, int cols) {
+  std::vector<int> triangles;
+  const int vertices = append_strip(rows, cols, 0, triangles);
+  return meshik::triangle_adjacency(triangles.data(), static_cast<int>(triangles.size() / 3), vertices);
+}
+
 // Chooses the branches of the logs of `rotations` (one per triangle of the adjacency) with
 // choose_consistent_log_branches and with the reference; expects the same bits. Returns the
 // chosen logs.
@@ -319,10 +326,8 @@ TEST(RotationBranches, ABasinOfSmallRotationsReachedThroughAFullTurnTakesTheTurn
   // tie), a basin on every level; the tree reaches it through the turn, so its branch is
   // 2 pi - 0.3 about z: it must not be kept principal.
   const int rows = 4, cols = 120;
-  std::vector<int> triangles;
-  const int vertices = append_strip(rows, cols, 0, triangles);
-  const int m = static_cast<int>(triangles.size() / 3);
-  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  const meshik::TriangleAdjacency adjacency = strip_adjacency(rows, cols);
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
   const double turned = 2 * kPi - 0.3;
   std::vector<Eigen::Matrix3d> rotations;
   for (int j = 0; j < m; ++j) {
@@ -372,10 +377,8 @@ TEST(RotationBranches, ComponentsFarFromHalfTurnsKeepPrincipalLogsAndTheOthersFo
 TEST(RotationBranches, EdgeDistancesAreTheSameBothWaysAndForAnySplitOfTheTriangles) {
   // The basins (safe_basins.h) read each edge from either side: its length must not depend on
   // the side.
-  std::vector<int> triangles;
-  const int vertices = append_strip(5, 9, 0, triangles);
-  const int m = static_cast<int>(triangles.size() / 3);
-  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  const meshik::TriangleAdjacency adjacency = strip_adjacency(5, 9);
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
   std::mt19937 random(13);
   std::normal_distribution<double> normal;
   std::vector<Eigen::Matrix3d> rotations;
@@ -398,10 +401,8 @@ TEST(RotationBranches, SafeBasinListsHoldTheTrianglesLinkedAtTheirSafeLevel) {
   // A grid of 12 x 30 x 2 triangles, each edge's length drawn below, between and above the two
   // thresholds, a few unsafe edges: the list of a triangle with a safe level l holds exactly the
   // triangles a search reaches from it along edges of level <= l, in increasing order.
-  std::vector<int> triangles;
-  const int vertices = append_strip(12, 30, 0, triangles);
-  const int m = static_cast<int>(triangles.size() / 3);
-  const meshik::TriangleAdjacency adjacency = meshik::triangle_adjacency(triangles.data(), m, vertices);
+  const meshik::TriangleAdjacency adjacency = strip_adjacency(12, 30);
+  const int m = static_cast<int>(adjacency.start.size()) - 1;
   std::mt19937 random(5);
   std::uniform_int_distribution<int> pick(0, 9);
   const double lengths[] = {1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 0.05, 0.05, 0.05, 0.5};
