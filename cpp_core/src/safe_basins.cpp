@@ -1,6 +1,7 @@
 // Safe levels of the nested basins: a flood from the unsafe edges, level by level.
 #include "safe_basins.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <numeric>
 

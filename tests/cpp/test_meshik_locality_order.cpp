@@ -11,8 +11,8 @@
 
 namespace {
 
-// Three grids of (side x side) cells in random vertex numbering, two of them joined at one
-// vertex only (one component), and unused vertices in between; the triangles shuffled.
+// Three grids of (side x side) cells in a random vertex numbering, two of them joined at one
+// vertex only (one component), and 5 vertices of no triangle among them; the triangles shuffled.
 struct ScatteredMesh {
   std::vector<int> triangles;
   int num_vertices = 0;
@@ -42,7 +42,8 @@ ScatteredMesh scattered_mesh(int side) {
   std::iota(order.begin(), order.end(), 0);
   std::shuffle(order.begin(), order.end(), random);
   std::vector<int> shuffled;
-  for (int j : order) shuffled.insert(shuffled.end(), mesh.triangles.begin() + 3 * j, mesh.triangles.begin() + 3 * j + 3);
+  for (int j : order)
+    shuffled.insert(shuffled.end(), mesh.triangles.begin() + 3 * j, mesh.triangles.begin() + 3 * j + 3);
   mesh.triangles = shuffled;
   return mesh;
 }
@@ -84,8 +85,9 @@ TEST(LocalityOrder, ComponentsAreTheVerticesLinkedByTrianglesNumberedByLeastInte
   EXPECT_EQ(count, 2);
   EXPECT_EQ(order.components.count, count);
   EXPECT_EQ(order.components.component_of_vertex, expected);
-  // The unused vertices come last, outside every component.
-  for (int v = mesh.num_vertices - 5; v < mesh.num_vertices; ++v) EXPECT_EQ(order.components.component_of_vertex[v], -1);
+  // The vertices of no triangle (the 5 spare ones and the second grid's replaced corner) come last.
+  const int in_triangles = mesh.num_vertices - 6;
+  for (int v = 0; v < mesh.num_vertices; ++v) EXPECT_EQ(order.components.component_of_vertex[v] < 0, v >= in_triangles);
 }
 
 }  // namespace

@@ -444,9 +444,8 @@ TEST(RotationBranches, SafeBasinListsHoldTheTrianglesLinkedAtTheirSafeLevel) {
     std::sort(basin.begin(), basin.end());
     const int b = members.basin_of[j];
     ASSERT_GE(b, 0) << j;
-    EXPECT_EQ(std::vector<int>(members.member.begin() + members.start[b], members.member.begin() + members.start[b + 1]),
-              basin)
-        << j;
+    const auto first = members.member.begin();
+    EXPECT_EQ(std::vector<int>(first + members.start[b], first + members.start[b + 1]), basin) << j;
   }
   for (int count : at_level) EXPECT_GT(count, 0);
 }
