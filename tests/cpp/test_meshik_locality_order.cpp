@@ -30,7 +30,7 @@ ScatteredMesh scattered_mesh(int side) {
   for (int grid = 0; grid < 3; ++grid)
     for (int r = 0; r < side; ++r)
       for (int c = 0; c < side; ++c) {
-        int v = grid * grid_vertices + r * (side + 1) + c;
+        const int v = grid * grid_vertices + r * (side + 1) + c;
         const int corners[6] = {v, v + 1, v + side + 2, v, v + side + 2, v + side + 1};
         for (int corner : corners) {
           // The second grid's last vertex is the first grid's first: those two grids touch.
