@@ -29,9 +29,6 @@ LocalityOrder locality_order(const int* triangles, int num_triangles, int num_ve
   order.internal_of_vertex = sparse::invert_permutation(order.vertex_of_internal);
   // The runs of the breadth-first order are the components; the vertices of no triangle (empty
   // lists) follow them.
-  int in_triangles = 0;
-  for (int v = 0; v < num_vertices; ++v) in_triangles += start[v + 1] > start[v];
-  run_starts.push_back(in_triangles);
   VertexComponents& components = order.components;
   components.count = static_cast<int>(run_starts.size()) - 1;
   components.component_of_vertex.assign(num_vertices, -1);

@@ -39,6 +39,7 @@ std::vector<int> breadth_first_order(const std::vector<int>& start, const std::v
         if (!reached[neighbour[s]]) reach(neighbour[s]);
     }
   }
+  if (run_starts != nullptr) run_starts->push_back(static_cast<int>(order.size()));
   for (int v = 0; v < n; ++v)
     if (!reached[v]) reach(v);
   return order;
